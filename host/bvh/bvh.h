@@ -1,0 +1,42 @@
+// Building the BVH: binned SAH over triangle centroids (Wald, "On fast Construction of SAH-based
+// Bounding Volume Hierarchies", 2007), then flattened depth-first into gpu::BvhNode
+// (pbrt-v4's LinearBVHNode layout; see shaders/shared/gpu_types.h).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "scene/scene.h"
+#include "shared/gpu_types.h"
+
+namespace vitrum {
+
+struct BvhStats {
+    std::uint32_t nodeCount = 0;
+    std::uint32_t leafCount = 0;
+    std::uint32_t maxDepth = 0;
+    std::uint32_t maxLeafTriangles = 0;
+    double sahCost = 0.0;  // expected cost with C_node = 1, C_tri = 1, relative to the root's area
+    double buildSeconds = 0.0;
+};
+
+struct Bvh {
+    std::vector<gpu::BvhNode> nodes;
+    // Leaf ranges index triangles in BVH order; triangleOrder[i] is the scene triangle at BVH
+    // position i.
+    std::vector<std::uint32_t> triangleOrder;
+    BvhStats stats;
+};
+
+Bvh buildBvh(std::span<const Triangle> triangles);
+
+}  // namespace vitrum
+
+namespace vitrum {
+
+// Triangle positions in BVH order, as the GPU and the CPU traversal read them (material index in
+// v0.w, object index in v1.w, both as uint bits).
+std::vector<gpu::TriangleVertices> packTriangleVertices(const Bvh& bvh, std::span<const Triangle> triangles);
+
+}  // namespace vitrum

@@ -1,0 +1,49 @@
+// CPU traversal of the flattened BVH (the same node array the GPU walks), in float or double.
+// Triangle test: Moller-Trumbore ("Fast, Minimum Storage Ray/Triangle Intersection", 1997) on
+// the stored vertices, edges computed as v1 - v0 and v2 - v0 exactly like shaders/bvh.glsl.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "shared/gpu_types.h"
+
+namespace vitrum {
+
+template <class Real>
+struct Ray {
+    glm::vec<3, Real> origin;
+    glm::vec<3, Real> direction;  // need not be unit length; t is in units of it
+    Real tMin = Real(0);
+    Real tMax = Real(1e30);
+};
+
+template <class Real>
+struct TriangleHit {
+    Real t;
+    Real u, v;               // barycentrics of v1 and v2
+    std::uint32_t triangle;  // index in BVH order
+};
+
+struct TraversalCounters {
+    std::uint64_t nodeVisits = 0;
+    std::uint64_t triangleTests = 0;
+};
+
+template <class Real>
+std::optional<TriangleHit<Real>> intersectTriangle(const gpu::TriangleVertices& tri, const Ray<Real>& ray);
+
+template <class Real>
+std::optional<TriangleHit<Real>> traceClosest(std::span<const gpu::BvhNode> nodes,
+                                              std::span<const gpu::TriangleVertices> triangles,
+                                              const Ray<Real>& ray, TraversalCounters* counters = nullptr);
+
+// True when any triangle is hit with tMin < t < tMax (shadow rays).
+template <class Real>
+bool traceAny(std::span<const gpu::BvhNode> nodes, std::span<const gpu::TriangleVertices> triangles,
+              const Ray<Real>& ray, TraversalCounters* counters = nullptr);
+
+}  // namespace vitrum

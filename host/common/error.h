@@ -1,0 +1,28 @@
+// Errors that reach the user. An InputError is the user's to fix (a bad scene, a missing file):
+// its message already names the file and, where there is one, the line, in the form
+// "path:line: what was expected, got what". Everything else is a bug or a device failure.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+namespace vitrum {
+
+class InputError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// "path:line: message" (line 0 means the file as a whole: "path: message").
+inline InputError inputError(const std::filesystem::path& file, int line, const std::string& message) {
+    std::string where = file.string();
+    if (line > 0) where += ":" + std::to_string(line);
+    return InputError(where + ": " + message);
+}
+
+// Warnings go to stderr once each; tests can count them.
+void warn(const std::string& message);
+int warningCount();
+
+}  // namespace vitrum

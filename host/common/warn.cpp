@@ -1,0 +1,24 @@
+#include "common/error.h"
+
+#include <atomic>
+#include <iostream>
+#include <mutex>
+#include <set>
+
+namespace vitrum {
+namespace {
+std::mutex gMutex;
+std::set<std::string> gSeen;
+std::atomic<int> gCount{0};
+}  // namespace
+
+void warn(const std::string& message) {
+    std::lock_guard lock(gMutex);
+    if (!gSeen.insert(message).second) return;
+    ++gCount;
+    std::cerr << "vitrum: warning: " << message << "\n";
+}
+
+int warningCount() { return gCount.load(); }
+
+}  // namespace vitrum

@@ -1,0 +1,14 @@
+// The host's view of the shared GPU layout: the sizes std430 gives each struct, checked here.
+#pragma once
+
+#include "shared/gpu_types.h"
+
+namespace vitrum::gpu {
+static_assert(sizeof(BvhNode) == 32);
+static_assert(sizeof(TriangleVertices) == 48);
+static_assert(sizeof(TriangleShading) == 80);
+static_assert(sizeof(GpuMaterial) == 64);
+static_assert(sizeof(TextureInfo) == 16);
+static_assert(sizeof(GpuLight) == 32);
+static_assert(sizeof(RenderParams) == 160);
+}  // namespace vitrum::gpu

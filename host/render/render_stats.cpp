@@ -1,0 +1,35 @@
+#include "render/render_stats.h"
+
+#include <nlohmann/json.hpp>
+
+namespace vitrum {
+
+double RenderStats::seconds(const std::string& phase) const {
+    for (const auto& [name, s] : phaseSeconds)
+        if (name == phase) return s;
+    return 0.0;
+}
+
+nlohmann::json toJson(const RenderStats& stats) {
+    nlohmann::json phases = nlohmann::json::object();
+    for (const auto& [name, s] : stats.phaseSeconds) phases[name] = s;
+    return {
+        {"backend", stats.backend},
+        {"device", stats.device},
+        {"seconds", phases},
+        {"rays",
+         {{"primary", stats.rays.primary},
+          {"shadow", stats.rays.shadow},
+          {"reflection", stats.rays.reflection},
+          {"refraction", stats.rays.refraction},
+          {"total", stats.rays.total()}}},
+        {"limits",
+         {{"depth_limit", stats.limits.depthLimit},
+          {"traversal_stack_overflow", stats.limits.traversalStackOverflow},
+          {"loop_limit_suspected", stats.limits.loopLimitSuspected}}},
+        {"dispatches", stats.dispatches},
+        {"node_visits", stats.nodeVisits},
+    };
+}
+
+}  // namespace vitrum

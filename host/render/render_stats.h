@@ -1,0 +1,43 @@
+// What a render reports, whichever backend made it: `--stats FILE.json` writes it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace vitrum {
+
+struct RayCounts {
+    std::uint64_t primary = 0;
+    std::uint64_t shadow = 0;
+    std::uint64_t reflection = 0;
+    std::uint64_t refraction = 0;
+    std::uint64_t total() const { return primary + shadow + reflection + refraction; }
+};
+
+// Limits that were hit. Nothing is cut silently: each is counted (docs/render-model.md).
+struct LimitCounts {
+    std::uint64_t depthLimit = 0;            // branches not traced because of max_depth
+    std::uint64_t traversalStackOverflow = 0;
+    std::uint64_t loopLimitSuspected = 0;    // GPU loops that ended without a reason of ours
+};
+
+struct RenderStats {
+    std::string backend;  // "vulkan" or "cpu"
+    std::string device;
+    std::vector<std::pair<std::string, double>> phaseSeconds;  // in the order they ran
+    RayCounts rays;
+    LimitCounts limits;
+    std::uint64_t dispatches = 0;
+    std::uint64_t nodeVisits = 0;
+
+    void addPhase(const std::string& name, double seconds) { phaseSeconds.emplace_back(name, seconds); }
+    double seconds(const std::string& phase) const;
+};
+
+nlohmann::json toJson(const RenderStats& stats);
+
+}  // namespace vitrum

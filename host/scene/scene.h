@@ -1,0 +1,91 @@
+// The scene as every backend sees it: geometry in world space, materials with linear colours,
+// lights, camera, background and the render settings the scene asks for. Loading fills it
+// (scene_loader.h); the BVH and the GPU packing read it. See docs/render-model.md.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace vitrum {
+
+enum class MaterialModel : std::uint32_t {
+    Normal = 1,   // (n + 1) / 2
+    Lambert = 2,
+    Phong = 3,    // opaque dielectric: Phong + Schlick-weighted reflection
+    Glass = 4,
+    Mirror = 6,
+};
+
+enum class FresnelModel : std::uint32_t { Schlick = 0, Exact = 1, SchlickExp2 = 2 };
+
+struct Texture {
+    std::filesystem::path path;
+    int width = 0;
+    int height = 0;
+    std::vector<glm::vec3> texels;  // linear RGB, row 0 is the image's top row
+};
+
+struct Material {
+    std::string name;
+    MaterialModel model = MaterialModel::Phong;
+    glm::vec3 ambient{0.0f};      // Ka, linear
+    glm::vec3 diffuse{0.5f};      // Kd, linear
+    glm::vec3 specular{0.0f};     // Ks, linear
+    float shininess = 1.0f;       // Ns
+    float ior = 1.5f;             // Ni
+    glm::vec3 attenuation{0.0f};  // Tf of a glass: Beer-Lambert mu per channel, 1 / scene unit
+    int diffuseTexture = -1;      // index into Scene::textures, -1 for none
+};
+
+struct Triangle {
+    glm::vec3 position[3];
+    glm::vec3 normal[3];  // vertex normals, or the geometric normal three times
+    glm::vec2 uv[3];      // (0, 0) where the file has none
+    std::uint32_t material = 0;
+    std::uint32_t object = 0;  // index into Scene::objectNames: one closed mesh
+};
+
+struct PointLight {
+    glm::vec3 position{0.0f};
+    glm::vec3 colour{1.0f};  // linear
+    bool inverseSquare = false;
+};
+
+struct Camera {
+    glm::vec3 from{0.0f, -5.0f, 0.0f};
+    glm::vec3 at{0.0f};
+    glm::vec3 up{0.0f, 0.0f, 1.0f};
+    float fovY = 45.0f;  // degrees
+    std::uint32_t width = 640;
+    std::uint32_t height = 480;
+};
+
+struct Background {
+    glm::vec3 colour{0.0f};  // linear
+};
+
+struct RenderSettings {
+    std::uint32_t samplesPerPixel = 1;
+    std::uint32_t maxDepth = 10;
+    FresnelModel fresnel = FresnelModel::Schlick;
+    float minWeight = 0.0f;
+};
+
+struct Scene {
+    std::filesystem::path source;  // the scene file (JSON or OBJ) it came from
+    Camera camera;
+    std::vector<PointLight> lights;
+    Background background;
+    RenderSettings settings;
+    float airIor = 1.0f;
+    std::vector<Triangle> triangles;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<std::string> objectNames;
+};
+
+}  // namespace vitrum

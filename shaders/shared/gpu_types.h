@@ -1,0 +1,147 @@
+// GPU data layout shared by the C++ host and the GLSL kernels: one definition of every buffer
+// element. Everything is built from vec4/uvec4 so that std430 and C++ agree without padding;
+// integers travel bit-cast in the .w of a vec4 (tinybvh's trick). The host checks sizes with
+// static_assert in host/gpu/gpu_layout.h.
+#ifndef VITRUM_GPU_TYPES_H
+#define VITRUM_GPU_TYPES_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace vitrum::gpu {
+using vec2 = glm::vec2;
+using vec3 = glm::vec3;
+using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
+using uint = std::uint32_t;
+#define VITRUM_CONST constexpr
+#else
+#define VITRUM_CONST const
+#endif
+
+// ---- BVH -----------------------------------------------------------------------------------
+// A flattened binary BVH in depth-first order (pbrt-v4's LinearBVHNode): an interior node's
+// first child is the next node, its second child sits at `boundsMin.w`.
+//   boundsMin.xyz, boundsMax.xyz: the node's box
+//   boundsMin.w (uint bits): leaf -> index of its first triangle; interior -> second child index
+//   boundsMax.w (uint bits): leaf -> triangle count (1..kMaxLeafTriangles);
+//                            interior -> kInteriorNodeFlag | split axis (0, 1, 2)
+struct BvhNode {
+    vec4 boundsMin;
+    vec4 boundsMax;
+};
+VITRUM_CONST uint kInteriorNodeFlag = 0x80000000u;
+VITRUM_CONST uint kMaxLeafTriangles = 8u;
+VITRUM_CONST uint kTraversalStackSize = 64u;
+
+// ---- Triangles (in BVH leaf order) -----------------------------------------------------------
+// Positions for intersection. v0.w = material index bits, v1.w = object index bits (the closed
+// mesh the triangle belongs to; it encloses a medium when its material is glass).
+struct TriangleVertices {
+    vec4 v0;
+    vec4 v1;
+    vec4 v2;
+};
+
+// Shading attributes. n0..n2 are the vertex normals (the geometric normal where the file has
+// none), uv01 = (u0, v0, u1, v1), uv2 = (u2, v2, -, -).
+struct TriangleShading {
+    vec4 n0;
+    vec4 n1;
+    vec4 n2;
+    vec4 uv01;
+    vec4 uv2;
+};
+
+// ---- Materials ------------------------------------------------------------------------------
+// Material models, numbered like the course's MTL `shader N` (docs/render-model.md).
+VITRUM_CONST uint kMaterialNormal = 1u;
+VITRUM_CONST uint kMaterialLambert = 2u;
+VITRUM_CONST uint kMaterialPhong = 3u;  // opaque dielectric: Phong + Schlick-weighted reflection
+VITRUM_CONST uint kMaterialGlass = 4u;
+VITRUM_CONST uint kMaterialMirror = 6u;
+
+VITRUM_CONST uint kNoTexture = 0xFFFFFFFFu;
+
+// All colours linear RGB.
+//   ambient.w  (uint bits) = model (kMaterial*)
+//   diffuse.w  (uint bits) = index into the texture table or kNoTexture
+//   specular.w = Phong exponent Ns
+//   attenuation.xyz = Beer-Lambert mu per channel (Tf), attenuation.w = IOR (Ni)
+struct GpuMaterial {
+    vec4 ambient;
+    vec4 diffuse;
+    vec4 specular;
+    vec4 attenuation;
+};
+
+// A texture is a run of texels (linear RGB in .xyz) in the texel buffer.
+//   x = first texel, y = width, z = height, w = unused
+struct TextureInfo {
+    uvec4 offsetAndSize;
+};
+
+// ---- Lights ---------------------------------------------------------------------------------
+// position.w = 1 for inverse-square fall-off, 0 for none (the course's default).
+struct GpuLight {
+    vec4 position;
+    vec4 colour;
+};
+
+// ---- Fresnel models -------------------------------------------------------------------------
+VITRUM_CONST uint kFresnelSchlick = 0u;
+VITRUM_CONST uint kFresnelExact = 1u;
+VITRUM_CONST uint kFresnelSchlickExp2 = 2u;
+
+// ---- Per-render parameters (uniform buffer) ---------------------------------------------------
+// The pinhole camera of docs/render-model.md: a sample at image position (sx, sy) has direction
+// normalize((sx - width/2) * cameraX + (height/2 - sy) * cameraY - focalLength * cameraZ).
+struct RenderParams {
+    vec4 cameraFrom;   // .w = focal length f = height / (2 tan(fov_y / 2)), in pixels
+    vec4 cameraX;      // .xyz = x_c
+    vec4 cameraY;      // .xyz = y_c
+    vec4 cameraZ;      // .xyz = z_c (points from the target back to the camera)
+    vec4 background;   // .xyz = constant background colour; .w = air IOR
+    uvec4 image;       // width, height, samples per pixel, max depth
+    uvec4 counts;      // light count, fresnel model, texture count, iteration budget per dispatch
+    uvec4 tile;        // tile origin x, tile origin y, tile width, tile height
+    uvec4 pass;        // x = 1 on the first dispatch of a tile (start fresh), 0 when resuming
+    vec4 tuning;       // x = min weight, y = ray offset scale (see offsetRayOrigin)
+};
+
+// ---- Render statistics (storage buffer of uints, one counter each) -----------------------------
+VITRUM_CONST uint kStatPrimaryRays = 0u;
+VITRUM_CONST uint kStatShadowRays = 1u;
+VITRUM_CONST uint kStatReflectionRays = 2u;
+VITRUM_CONST uint kStatRefractionRays = 3u;
+VITRUM_CONST uint kStatUnfinishedPixels = 4u;    // pixels of this tile that need another dispatch
+VITRUM_CONST uint kStatLoopLimitSuspected = 5u;  // the main loop ended without a reason of ours
+VITRUM_CONST uint kStatTraversalStackOverflow = 6u;
+VITRUM_CONST uint kStatDepthLimitHits = 7u;
+VITRUM_CONST uint kStatNodeVisits = 8u;
+VITRUM_CONST uint kStatCount = 16u;
+
+// ---- Sampling -------------------------------------------------------------------------------
+// The integer hash both backends use for jitter, so that their samples are bit-identical:
+// PCG's output permutation (Jarzynski and Olano, "Hash Functions for GPU Rendering", JCGT 2020).
+#ifdef __cplusplus
+inline
+#endif
+uint pcgHash(uint v) {
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// A uniform float in [0, 1) from the top 24 bits of a hash: exact in float on every backend.
+#ifdef __cplusplus
+inline
+#endif
+float hashToUnit(uint h) {
+    return float(h >> 8u) * (1.0f / 16777216.0f);
+}
+
+#ifdef __cplusplus
+}  // namespace vitrum::gpu
+#endif
+#endif
