@@ -1,5 +1,399 @@
 #version 460
+// The ray tree of docs/render-model.md, one pixel per invocation, for one tile of the image.
+//
+// lavapipe silently ends a shader's loops after 65,535 iterations. So every loop iteration of
+// this kernel is one small counted step of a state machine (one BVH node, one triangle, or one
+// shading decision). A dispatch runs at most `params.counts.w` steps per pixel;
+// a pixel that is not done keeps its whole state (its ray tree included) in `states[]`, and the
+// host dispatches again until every pixel of the tile is done. Nothing recurses.
 #extension GL_GOOGLE_include_directive : require
+
 #include "shared/gpu_types.h"
+#include "bindings.glsl"
+
 layout(local_size_x = 8, local_size_y = 8) in;
-void main() {}
+
+// The whole state of this pixel; loaded from / stored to states[] only when a pixel is resumed
+// or suspended.
+TraceState st;
+
+// Counters of this invocation, added to stats[] once at the end.
+uint gNodeVisits = 0u;
+uint gTraversalOverflows = 0u;
+
+#include "bvh.glsl"
+#include "camera.glsl"
+#include "optics.glsl"
+#include "ray_offset.glsl"
+#include "texture.glsl"
+
+const uint kPhaseStartSample = 0u;  // make the next primary ray, or finish the pixel
+const uint kPhaseTrace = 1u;        // closest-hit traversal of st.ray
+const uint kPhaseNextLight = 2u;    // direct light from light st.control.z, or go on to scatter
+const uint kPhaseShadow = 3u;       // any-hit traversal towards light st.control.z
+const uint kPhaseScatter = 4u;      // spawn reflected / refracted rays
+const uint kPhaseNextRay = 5u;      // pop a pending ray, or finish the sample
+const uint kPhaseDone = 6u;
+
+uint gPrimaryRays = 0u;
+uint gShadowRays = 0u;
+uint gReflectionRays = 0u;
+uint gRefractionRays = 0u;
+uint gDepthLimitHits = 0u;
+uint gRayStackOverflows = 0u;
+uint gMediumStackOverflows = 0u;
+uint gWeightCuts = 0u;
+uint gTotalInternalReflections = 0u;
+uint gAbsorbedEscapes = 0u;
+
+uint rayDepth(PendingRay r) { return floatBitsToUint(r.origin.w); }
+uint mediaCount(PendingRay r) { return floatBitsToUint(r.direction.w); }
+uint hitMaterial() { return floatBitsToUint(st.hitNormal.w); }
+uint hitObject() { return floatBitsToUint(st.hitGeometricNormal.w); }
+uint materialModel(GpuMaterial m) { return floatBitsToUint(m.ambient.w); }
+
+// IOR of the medium a ray is in: the innermost object's, or the scene's air.
+float mediumIor(PendingRay r) {
+    uint count = mediaCount(r);
+    return count == 0u ? params.background.w : materials[objectMaterial[r.media[count - 1u]]].attenuation.w;
+}
+
+vec3 mediumAttenuation(PendingRay r) {
+    uint count = mediaCount(r);
+    return count == 0u ? vec3(0.0) : materials[objectMaterial[r.media[count - 1u]]].attenuation.xyz;
+}
+
+void startPrimaryRay() {
+    uvec2 pixel = params.tile.xy + gl_GlobalInvocationID.xy;
+    uint pixelIndex = pixel.y * params.image.x + pixel.x;
+    uint k = floatBitsToUint(st.accumulated.w);
+    vec2 position = vec2(pixel) + sampleOffsetInPixel(pixelIndex, k, params.image.z, params.pass.y);
+    st.ray.origin = vec4(params.cameraFrom.xyz, uintBitsToFloat(0u));
+    st.ray.direction = vec4(cameraRayDirection(position), uintBitsToFloat(0u));
+    st.ray.weight = vec4(1.0);
+    st.ray.media = uvec4(0u);
+    st.sampleColour = vec4(0.0);
+    st.control.y = 0u;
+    gPrimaryRays += 1u;
+    beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 3.0e38);
+    st.control.x = kPhaseTrace;
+}
+
+// The closest-hit traversal of st.ray is over: record the hit or take the background.
+void finishTrace() {
+    uint triangle = st.traversal.z;
+    // Beer-Lambert over the segment just travelled (render model: "Media: the IOR stack").
+    vec3 mu = mediumAttenuation(st.ray);
+    if (triangle == kNoTriangle) {
+        vec3 escaped = st.ray.weight.xyz * params.background.xyz;
+        if (any(greaterThan(mu, vec3(0.0)))) {
+            // Only an open mesh lets a ray leave the scene inside an absorbing medium.
+            escaped *= vec3(equal(mu, vec3(0.0)));
+            gAbsorbedEscapes += 1u;
+        }
+        st.sampleColour.xyz += escaped;
+        st.control.x = kPhaseNextRay;
+        return;
+    }
+    float t = st.traceDirection.w;
+    st.ray.weight.xyz *= beerLambert(mu, t);
+
+    TriangleVertices tri = vertices[triangle];
+    TriangleShading sh = shading[triangle];
+    vec2 bary = st.hitUv.zw;
+    float w0 = 1.0 - bary.x - bary.y;
+    vec3 geometricNormal = normalize(cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz));
+    vec3 interpolated = w0 * sh.n0.xyz + bary.x * sh.n1.xyz + bary.y * sh.n2.xyz;
+    float normalLength = length(interpolated);
+    vec3 shadingNormal = normalLength > 0.0 ? interpolated / normalLength : geometricNormal;
+    vec2 uv = w0 * sh.uv01.xy + bary.x * sh.uv01.zw + bary.y * sh.uv2.xy;
+    // The hit point from the barycentrics, not origin + t d: it lies on the triangle to within
+    // rounding (Waechter and Binder).
+    vec3 position = w0 * tri.v0.xyz + bary.x * tri.v1.xyz + bary.y * tri.v2.xyz;
+    st.hitPosition = vec4(position, t);
+    st.hitNormal = vec4(shadingNormal, tri.v0.w);
+    st.hitGeometricNormal = vec4(geometricNormal, tri.v1.w);
+    st.hitUv.xy = uv;
+
+    uint model = materialModel(materials[hitMaterial()]);
+    if (model == kMaterialGlass) {
+        st.control.x = kPhaseScatter;
+        return;
+    }
+    // Opaque: both normals face the incoming ray.
+    vec3 d = st.ray.direction.xyz;
+    if (dot(geometricNormal, d) > 0.0) st.hitGeometricNormal.xyz = -geometricNormal;
+    if (dot(shadingNormal, d) > 0.0) st.hitNormal.xyz = -shadingNormal;
+    if (model == kMaterialNormal) {
+        st.sampleColour.xyz += st.ray.weight.xyz * (0.5 * st.hitNormal.xyz + 0.5);
+        st.control.x = kPhaseNextRay;
+        return;
+    }
+    st.control.z = 0u;
+    st.control.x = model == kMaterialMirror ? kPhaseScatter : kPhaseNextLight;
+}
+
+vec3 diffuseColour(GpuMaterial m) {
+    uint texture = floatBitsToUint(m.diffuse.w);
+    return texture == kNoTexture ? m.diffuse.xyz : sampleTextureBilinear(texture, st.hitUv.xy);
+}
+
+// The visibility-weighted part of light `index` at the hit: m_d max(0, n.l) (+ Phong's
+// m_s max(0, l_r.v)^Ns), times the light's colour and fall-off.
+vec3 directLight(uint index) {
+    GpuMaterial m = materials[hitMaterial()];
+    GpuLight light = lights[index];
+    vec3 p = st.hitPosition.xyz;
+    vec3 n = st.hitNormal.xyz;
+    vec3 toLight = light.position.xyz - p;
+    float distanceSquared = dot(toLight, toLight);
+    vec3 l = toLight * inversesqrt(distanceSquared);
+    vec3 colour = light.colour.xyz;
+    if (light.position.w != 0.0) colour /= distanceSquared;
+    vec3 result = diffuseColour(m) * max(0.0, dot(n, l));
+    if (materialModel(m) == kMaterialPhong) {
+        vec3 lr = 2.0 * dot(n, l) * n - l;
+        float c = max(0.0, dot(lr, -st.ray.direction.xyz));
+        float ns = m.specular.w;
+        float highlight = c > 0.0 ? pow(c, ns) : (ns == 0.0 ? 1.0 : 0.0);
+        result += m.specular.xyz * highlight;
+    }
+    return colour * result;
+}
+
+// Lambert and Phong: ambient from every light, then one shadow ray per light whose direct term
+// is not zero.
+void nextLight() {
+    uint index = st.control.z;
+    if (index >= params.counts.x) {
+        uint model = materialModel(materials[hitMaterial()]);
+        st.control.x = model == kMaterialPhong ? kPhaseScatter : kPhaseNextRay;
+        return;
+    }
+    GpuMaterial m = materials[hitMaterial()];
+    st.sampleColour.xyz += st.ray.weight.xyz * lights[index].colour.xyz * m.ambient.xyz;
+    vec3 direct = directLight(index);
+    if (all(equal(direct, vec3(0.0)))) {
+        st.control.z = index + 1u;
+        return;
+    }
+    vec3 origin = offsetRayOrigin(st.hitPosition.xyz, st.hitGeometricNormal.xyz);
+    gShadowRays += 1u;
+    beginTraversal(origin, lights[index].position.xyz - origin, 1.0);
+    st.control.x = kPhaseShadow;
+}
+
+void finishShadow() {
+    uint index = st.control.z;
+    if (st.traversal.z == kNoTriangle) st.sampleColour.xyz += st.ray.weight.xyz * directLight(index);
+    st.control.z = index + 1u;
+    st.control.x = kPhaseNextLight;
+}
+
+// Queues a child ray of st.ray unless a limit stops it; each limit is counted.
+void pushRay(vec3 origin, vec3 direction, vec3 weight, uvec4 media, uint count, bool sameDepth, bool reflection) {
+    uint depth = rayDepth(st.ray) + (sameDepth ? 0u : 1u);
+    if (depth >= params.image.w) {
+        gDepthLimitHits += 1u;
+        return;
+    }
+    if (all(lessThan(weight, vec3(params.tuning.x)))) {
+        gWeightCuts += 1u;
+        return;
+    }
+    if (st.control.y >= kRayStackSize) {
+        gRayStackOverflows += 1u;
+        return;
+    }
+    PendingRay r;
+    r.origin = vec4(origin, uintBitsToFloat(depth));
+    r.direction = vec4(direction, uintBitsToFloat(count));
+    r.weight = vec4(weight, 0.0);
+    r.media = media;
+    st.pending[st.control.y] = r;
+    st.control.y += 1u;
+    if (sameDepth) return;
+    if (reflection) gReflectionRays += 1u;
+    else gRefractionRays += 1u;
+}
+
+// Opaque dielectric (Phong + Schlick-weighted, untinted reflection) and mirror.
+void scatterOpaque(GpuMaterial m) {
+    vec3 d = st.ray.direction.xyz;
+    vec3 n = st.hitNormal.xyz;
+    vec3 origin = offsetRayOrigin(st.hitPosition.xyz, st.hitGeometricNormal.xyz);
+    vec3 weight;
+    if (materialModel(m) == kMaterialMirror) {
+        weight = st.ray.weight.xyz * m.specular.xyz;
+    } else {
+        float n1 = mediumIor(st.ray);
+        float n2 = m.attenuation.w;
+        float cosI = -dot(d, n);
+        float eta = n1 / n2;
+        float r = fresnelReflectance(kFresnelSchlick, n1, n2, cosI, 1.0 - eta * eta * (1.0 - cosI * cosI));
+        weight = st.ray.weight.xyz * r;
+    }
+    pushRay(origin, reflectDirection(d, n), weight, st.ray.media, mediaCount(st.ray), false, true);
+}
+
+// Glass: the ray enters or leaves object k, decided by the geometric normal of the consistently
+// wound mesh; the medium stack says what is on the other side.
+void scatterGlass(GpuMaterial m) {
+    vec3 d = st.ray.direction.xyz;
+    vec3 ng = st.hitGeometricNormal.xyz;
+    uint object = hitObject();
+    bool entering = dot(d, ng) < 0.0;
+    uvec4 media = st.ray.media;
+    uint count = mediaCount(st.ray);
+    float n1 = mediumIor(st.ray);
+    float n2;
+    if (entering) {
+        if (count < kMaxMediumDepth) {
+            media[count] = object;
+            count += 1u;
+        } else {
+            gMediumStackOverflows += 1u;
+        }
+        n2 = m.attenuation.w;
+    } else {
+        // Remove the innermost entry of this object (normally the top). Written without loops:
+        // every loop iteration counts against lavapipe's limit.
+        uint found = count;
+        if (count > 0u && media[0] == object) found = 0u;
+        if (count > 1u && media[1] == object) found = 1u;
+        if (count > 2u && media[2] == object) found = 2u;
+        if (count > 3u && media[3] == object) found = 3u;
+        if (found < count) {
+            if (found <= 0u && 1u < count) media[0] = media[1];
+            if (found <= 1u && 2u < count) media[1] = media[2];
+            if (found <= 2u && 3u < count) media[2] = media[3];
+            count -= 1u;
+        }
+        n1 = m.attenuation.w;
+        n2 = count == 0u ? params.background.w : materials[objectMaterial[media[count - 1u]]].attenuation.w;
+    }
+    vec3 facing = entering ? ng : -ng;
+    vec3 n = entering ? st.hitNormal.xyz : -st.hitNormal.xyz;
+    if (dot(n, d) >= 0.0) n = facing;  // a shading normal on the wrong side: use the true one
+    vec3 p = st.hitPosition.xyz;
+    if (n1 == n2) {
+        // Index-matched: no optical interface; the same ray goes on with the new stack.
+        pushRay(offsetRayOrigin(p, -facing), d, st.ray.weight.xyz, media, count, true, false);
+        return;
+    }
+    float eta = n1 / n2;
+    float cosI = -dot(d, n);
+    float cos2t = cosSquaredTransmitted(d, n, eta);
+    float r = fresnelReflectance(params.counts.y, n1, n2, cosI, cos2t);
+    if (cos2t < 0.0) gTotalInternalReflections += 1u;
+    vec3 w = st.ray.weight.xyz;
+    if (cos2t >= 0.0)
+        pushRay(offsetRayOrigin(p, -facing), refractDirection(d, n, eta, cos2t), w * (1.0 - r), media, count, false,
+                false);
+    pushRay(offsetRayOrigin(p, facing), reflectDirection(d, n), w * r, st.ray.media, mediaCount(st.ray), false, true);
+}
+
+void scatter() {
+    GpuMaterial m = materials[hitMaterial()];
+    if (materialModel(m) == kMaterialGlass) scatterGlass(m);
+    else scatterOpaque(m);
+    st.control.x = kPhaseNextRay;
+}
+
+void nextRay() {
+    if (st.control.y == 0u) {
+        uint done = floatBitsToUint(st.accumulated.w) + 1u;
+        st.accumulated = vec4(st.accumulated.xyz + st.sampleColour.xyz, uintBitsToFloat(done));
+        st.control.x = kPhaseStartSample;
+        return;
+    }
+    st.control.y -= 1u;
+    st.ray = st.pending[st.control.y];
+    beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 3.0e38);
+    st.control.x = kPhaseTrace;
+}
+
+// One shading step: everything but traversal.
+void shadingStep() {
+    uint phase = st.control.x;
+    if (phase == kPhaseNextLight) {
+        nextLight();
+    } else if (phase == kPhaseScatter) {
+        scatter();
+    } else if (phase == kPhaseNextRay) {
+        nextRay();
+    } else if (phase == kPhaseStartSample) {
+        if (floatBitsToUint(st.accumulated.w) >= params.image.z) st.control.x = kPhaseDone;
+        else startPrimaryRay();
+    }
+}
+
+void addStat(uint index, uint value) {
+    if (value != 0u) atomicAdd(stats[index], value);
+}
+
+void main() {
+    uvec2 local = gl_GlobalInvocationID.xy;
+    uvec2 pixel = params.tile.xy + local;
+    if (local.x >= params.tile.z || local.y >= params.tile.w || pixel.x >= params.image.x || pixel.y >= params.image.y)
+        return;
+    uint slot = local.y * params.tile.z + local.x;
+    if (params.pass.x == 1u) {
+        st.accumulated = vec4(0.0, 0.0, 0.0, uintBitsToFloat(0u));
+        st.control = uvec4(kPhaseStartSample, 0u, 0u, 0u);
+        st.traversal.w = 0u;
+    } else {
+        if (states[slot].control.x == kPhaseDone) return;
+        st = states[slot];
+    }
+
+    // lavapipe runs 8 invocations in lock step and executes both sides of every branch under a
+    // mask, so a loop's cost per iteration is its whole body. Hence two loops: a small inner one
+    // that only walks the BVH, inside an outer one that shades. Both count against one budget of
+    // steps, far below lavapipe's 65,535 iterations over all loops.
+    uint budget = params.counts.w;
+    uint steps = 0u;
+    while (st.control.x != kPhaseDone && steps < budget) {
+        steps += 1u;
+        uint phase = st.control.x;
+        if (phase == kPhaseTrace || phase == kPhaseShadow) {
+            bool anyHit = phase == kPhaseShadow;
+            bool over = false;
+            while (!over && steps < budget) {
+                steps += 1u;
+                over = traversalStep(anyHit);
+            }
+            if (!over) break;
+            if (anyHit) finishShadow();
+            else finishTrace();
+        } else {
+            shadingStep();
+        }
+    }
+
+    st.traversal.w += steps;
+    if (st.control.x == kPhaseDone) {
+        atomicMax(stats[kStatMaxPixelSteps], st.traversal.w);
+        pixels[pixel.y * params.image.x + pixel.x] = vec4(st.accumulated.xyz / float(params.image.z), 1.0);
+        if (params.pass.x == 0u) states[slot].control.x = kPhaseDone;
+    } else {
+        // Out of budget: keep everything for the next dispatch. A loop that stopped short of both
+        // the end and the budget was stopped by the driver: count it, never hide it.
+        if (steps < budget) atomicAdd(stats[kStatLoopLimitSuspected], 1u);
+        states[slot] = st;
+        atomicAdd(stats[kStatUnfinishedPixels], 1u);
+    }
+    addStat(kStatTraversalSteps, steps);
+    addStat(kStatPrimaryRays, gPrimaryRays);
+    addStat(kStatShadowRays, gShadowRays);
+    addStat(kStatReflectionRays, gReflectionRays);
+    addStat(kStatRefractionRays, gRefractionRays);
+    addStat(kStatNodeVisits, gNodeVisits);
+    addStat(kStatTraversalStackOverflow, gTraversalOverflows);
+    addStat(kStatDepthLimitHits, gDepthLimitHits);
+    addStat(kStatRayStackOverflow, gRayStackOverflows);
+    addStat(kStatMediumStackOverflow, gMediumStackOverflows);
+    addStat(kStatWeightCuts, gWeightCuts);
+    addStat(kStatTotalInternalReflections, gTotalInternalReflections);
+    addStat(kStatAbsorbedEscapes, gAbsorbedEscapes);
+}

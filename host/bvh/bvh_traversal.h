@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -45,5 +46,11 @@ std::optional<TriangleHit<Real>> traceClosest(std::span<const gpu::BvhNode> node
 template <class Real>
 bool traceAny(std::span<const gpu::BvhNode> nodes, std::span<const gpu::TriangleVertices> triangles,
               const Ray<Real>& ray, TraversalCounters* counters = nullptr);
+
+// Appends every triangle hit with tMin < t < tMax to `hits`, in traversal order. For short
+// intervals: the CPU reference uses it to find surfaces touching the one a ray just hit.
+template <class Real>
+void traceAll(std::span<const gpu::BvhNode> nodes, std::span<const gpu::TriangleVertices> triangles,
+              const Ray<Real>& ray, std::vector<TriangleHit<Real>>& hits, TraversalCounters* counters = nullptr);
 
 }  // namespace vitrum

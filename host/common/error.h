@@ -16,9 +16,10 @@ public:
 
 // "path:line: message" (line 0 means the file as a whole: "path: message").
 inline InputError inputError(const std::filesystem::path& file, int line, const std::string& message) {
-    std::string where = file.string();
-    if (line > 0) where += ":" + std::to_string(line);
-    return InputError(where + ": " + message);
+    std::string text = file.string();
+    if (line > 0) text.append(":").append(std::to_string(line));
+    text.append(": ").append(message);
+    return InputError(text);
 }
 
 // Warnings go to stderr once each; tests can count them.

@@ -12,3 +12,9 @@ static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(GpuLight) == 32);
 static_assert(sizeof(RenderParams) == 160);
 }  // namespace vitrum::gpu
+
+namespace vitrum::gpu {
+static_assert(sizeof(PendingRay) == 64);
+static_assert(sizeof(TraceState) == 64 + kRayStackSize * 64 + 10 * 16 + kTraversalStackSize * 4);
+static_assert(kMaxMediumDepth == 4, "trace.comp's medium stack code is unrolled for 4 entries");
+}  // namespace vitrum::gpu

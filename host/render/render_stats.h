@@ -23,6 +23,9 @@ struct LimitCounts {
     std::uint64_t depthLimit = 0;            // branches not traced because of max_depth
     std::uint64_t traversalStackOverflow = 0;
     std::uint64_t loopLimitSuspected = 0;    // GPU loops that ended without a reason of ours
+    std::uint64_t rayStackOverflow = 0;      // branches dropped: pending-ray stack full
+    std::uint64_t mediumStackOverflow = 0;   // media not recorded: medium stack full
+    std::uint64_t weightCuts = 0;            // branches skipped by min_weight
 };
 
 struct RenderStats {
@@ -33,6 +36,10 @@ struct RenderStats {
     LimitCounts limits;
     std::uint64_t dispatches = 0;
     std::uint64_t nodeVisits = 0;
+    std::uint64_t totalInternalReflections = 0;
+    std::uint64_t absorbedEscapes = 0;
+    std::uint64_t loopSteps = 0;          // GPU: steps of trace.comp's loop, all pixels
+    std::uint64_t maxPixelLoopSteps = 0;  // GPU: most steps one pixel needed, over all its dispatches  // rays that left the scene inside an absorbing medium
 
     void addPhase(const std::string& name, double seconds) { phaseSeconds.emplace_back(name, seconds); }
     double seconds(const std::string& phase) const;

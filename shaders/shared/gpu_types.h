@@ -105,11 +105,45 @@ struct RenderParams {
     uvec4 image;       // width, height, samples per pixel, max depth
     uvec4 counts;      // light count, fresnel model, texture count, iteration budget per dispatch
     uvec4 tile;        // tile origin x, tile origin y, tile width, tile height
-    uvec4 pass;        // x = 1 on the first dispatch of a tile (start fresh), 0 when resuming
-    vec4 tuning;       // x = min weight, y = ray offset scale (see offsetRayOrigin)
+    uvec4 pass;        // x = 1 on the first dispatch of a tile (start fresh), 0 when resuming;
+                       // y = columns of the stratified sample grid (rows = spp / columns)
+    vec4 tuning;       // x = min weight
+};
+
+// ---- Per-invocation trace state (storage buffer, one per pixel of a tile) ----------------------
+// lavapipe stops any shader loop after 65,535 iterations, silently. trace.comp therefore runs
+// one flat loop of at most `iteration budget` steps per dispatch; a pixel that is not finished
+// keeps its whole state here and the next dispatch resumes it (docs/gpu-design.md).
+VITRUM_CONST uint kRayStackSize = 16u;    // pending rays of the depth-first ray tree
+VITRUM_CONST uint kMaxMediumDepth = 4u;   // media a ray can be inside at once (trace.comp unrolls for 4)
+
+// A ray of the tree with everything needed to continue it later.
+struct PendingRay {
+    vec4 origin;     // .w = depth (uint bits)
+    vec4 direction;  // unit; .w = number of media on the stack (uint bits)
+    vec4 weight;     // .xyz = product of the path factors (R, 1 - R, Beer-Lambert, m_s)
+    uvec4 media;     // object indices of the media the ray is inside, innermost last
+};
+
+struct TraceState {
+    PendingRay ray;                      // the ray being traced (or shaded)
+    PendingRay pending[kRayStackSize];   // rays waiting to be traced
+    vec4 traceOrigin;                    // the ray of the current traversal (primary or shadow);
+    vec4 traceDirection;                 // .w = closest t so far (the traversal's tMax)
+    vec4 hitPosition;                    // .w = hit t of `ray`
+    vec4 hitNormal;                      // shading normal, .w = material (uint bits)
+    vec4 hitGeometricNormal;             // .w = object (uint bits)
+    vec4 hitUv;                          // .xy = texture coordinates, .zw = barycentrics
+    vec4 sampleColour;                   // colour of the current sample so far
+    vec4 accumulated;                    // sum of finished samples; .w = samples done (uint bits)
+    uvec4 control;                       // phase, pending rays, current light, traversal stack size
+    uvec4 traversal;                     // leaf cursor, leaf end, closest triangle, pixel's steps
+    uint stack[kTraversalStackSize];     // BVH nodes still to visit
 };
 
 // ---- Render statistics (storage buffer of uints, one counter each) -----------------------------
+// Zeroed before and read after every dispatch by the host, which sums them in 64 bits: a single
+// dispatch cannot overflow them.
 VITRUM_CONST uint kStatPrimaryRays = 0u;
 VITRUM_CONST uint kStatShadowRays = 1u;
 VITRUM_CONST uint kStatReflectionRays = 2u;
@@ -119,6 +153,13 @@ VITRUM_CONST uint kStatLoopLimitSuspected = 5u;  // the main loop ended without 
 VITRUM_CONST uint kStatTraversalStackOverflow = 6u;
 VITRUM_CONST uint kStatDepthLimitHits = 7u;
 VITRUM_CONST uint kStatNodeVisits = 8u;
+VITRUM_CONST uint kStatTraversalSteps = 9u;      // iterations of the main loop
+VITRUM_CONST uint kStatRayStackOverflow = 10u;   // branches dropped: pending-ray stack full
+VITRUM_CONST uint kStatMediumStackOverflow = 11u;
+VITRUM_CONST uint kStatWeightCuts = 12u;         // branches skipped by min_weight
+VITRUM_CONST uint kStatTotalInternalReflections = 13u;
+VITRUM_CONST uint kStatAbsorbedEscapes = 14u;    // rays leaving the scene inside an absorbing medium
+VITRUM_CONST uint kStatMaxPixelSteps = 15u;      // most loop steps one pixel needed (atomicMax)
 VITRUM_CONST uint kStatCount = 16u;
 
 // ---- Sampling -------------------------------------------------------------------------------

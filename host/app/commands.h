@@ -1,0 +1,12 @@
+// The `vitrum` subcommands. Each takes the arguments after its name and returns the exit code;
+// errors are thrown (InputError for the user's, anything else for vitrum's or the device's).
+#pragma once
+
+namespace vitrum {
+
+int renderCommand(int argc, char** argv, int first);
+int infoCommand(int argc, char** argv, int first);
+int diffCommand(int argc, char** argv, int first);
+int devicesCommand(int argc, char** argv, int first);
+
+}  // namespace vitrum

@@ -1,0 +1,248 @@
+// `vitrum render SCENE -o OUT [options]`
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "app/arguments.h"
+#include "app/commands.h"
+#include "bvh/bvh.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/progress.h"
+#include "cpu/reference_renderer.h"
+#include "gpu/vulkan_device.h"
+#include "gpu/vulkan_renderer.h"
+#include "image/image.h"
+#include "scene/scene_loader.h"
+
+namespace vitrum {
+namespace {
+
+const char* kRenderHelp = R"(usage: vitrum render SCENE -o OUT [options]
+
+Renders SCENE (a .json scene file or a bare .obj) and writes OUT: .png (8-bit sRGB), .pfm or
+.hdr (linear). Options override the scene's own settings.
+
+  -o, --output FILE        the image to write (required)
+  --backend vulkan|cpu     Vulkan compute (default) or the CPU reference renderer
+  --device INDEX|NAME      the Vulkan device ('vitrum devices' lists them); default: first GPU,
+                           else lavapipe
+  --precision float|double CPU reference arithmetic (default float)
+  --threads N              CPU reference threads (default: all)
+  --width N, --height N    image size in pixels (1..16384)
+  --spp N                  samples per pixel (1..4096): 1 = pixel centre, more = stratified jitter
+  --max-depth N            rays are traced while their depth is below N (0..64; default 10)
+  --min-weight W           skip branches whose path weight is below W in every channel (default 0)
+  --fresnel MODEL          schlick (default) | exact | schlick-exp2, for glass
+  --camera-from X,Y,Z      camera position
+  --camera-at X,Y,Z        camera target
+  --camera-up X,Y,Z        camera up vector
+  --fov DEG                vertical field of view in degrees (0..180, exclusive)
+  --light X,Y,Z            a white point light; repeatable; replaces the scene's lights
+  --background R,G,B       constant background colour, linear RGB
+  --stats FILE.json        write device, times by phase, rays by kind and limits hit
+  --iteration-budget N     GPU loop steps per pixel and dispatch (default 16384; lavapipe
+                           silently stops loops at 65,535)
+  --tile N                 GPU tile size in pixels (default 128)
+)";
+
+enum class Backend { Vulkan, Cpu };
+
+struct RenderCommand {
+    std::string scenePath;
+    std::string outputPath;
+    std::string statsPath;
+    Backend backend = Backend::Vulkan;
+    std::string device;
+    bool doublePrecision = false;
+    unsigned threads = 0;
+    VulkanRenderOptions gpu;
+    // Overrides of the scene.
+    std::optional<std::uint32_t> width, height, spp, maxDepth;
+    std::optional<float> minWeight, fov;
+    std::optional<FresnelModel> fresnel;
+    std::optional<glm::vec3> from, at, up, background;
+    std::vector<glm::vec3> lights;
+};
+
+bool hasExtension(const std::string& path, std::initializer_list<const char*> extensions) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    for (const char* e : extensions)
+        if (ext == e) return true;
+    return false;
+}
+
+RenderCommand parse(int argc, char** argv, int first) {
+    RenderCommand c;
+    Arguments args(argc, argv, first);
+    while (!args.empty()) {
+        std::string flag = args.next();
+        if (flag == "-o" || flag == "--output") c.outputPath = args.valueOf(flag);
+        else if (flag == "--backend") {
+            std::string v = args.valueOf(flag);
+            if (v == "vulkan") c.backend = Backend::Vulkan;
+            else if (v == "cpu") c.backend = Backend::Cpu;
+            else throw InputError("--backend must be vulkan or cpu, got \"" + v + "\"");
+        } else if (flag == "--device") c.device = args.valueOf(flag);
+        else if (flag == "--precision") {
+            std::string v = args.valueOf(flag);
+            if (v != "float" && v != "double") throw InputError("--precision must be float or double, got \"" + v + "\"");
+            c.doublePrecision = v == "double";
+        } else if (flag == "--threads") c.threads = Arguments::toUint(flag, args.valueOf(flag), 1, 1024);
+        else if (flag == "--width") c.width = Arguments::toUint(flag, args.valueOf(flag), 1, 16384);
+        else if (flag == "--height") c.height = Arguments::toUint(flag, args.valueOf(flag), 1, 16384);
+        else if (flag == "--spp") c.spp = Arguments::toUint(flag, args.valueOf(flag), 1, 4096);
+        else if (flag == "--max-depth") c.maxDepth = Arguments::toUint(flag, args.valueOf(flag), 0, 64);
+        else if (flag == "--min-weight") {
+            float w = Arguments::toFloat(flag, args.valueOf(flag));
+            if (w < 0 || w > 1) throw InputError("--min-weight must be between 0 and 1");
+            c.minWeight = w;
+        } else if (flag == "--fresnel") {
+            std::string v = args.valueOf(flag);
+            if (v == "schlick") c.fresnel = FresnelModel::Schlick;
+            else if (v == "exact") c.fresnel = FresnelModel::Exact;
+            else if (v == "schlick-exp2") c.fresnel = FresnelModel::SchlickExp2;
+            else throw InputError("--fresnel must be schlick, exact or schlick-exp2, got \"" + v + "\"");
+        } else if (flag == "--camera-from") c.from = Arguments::toVec3(flag, args.valueOf(flag));
+        else if (flag == "--camera-at") c.at = Arguments::toVec3(flag, args.valueOf(flag));
+        else if (flag == "--camera-up") c.up = Arguments::toVec3(flag, args.valueOf(flag));
+        else if (flag == "--fov") {
+            float f = Arguments::toFloat(flag, args.valueOf(flag));
+            if (!(f > 0.0f && f < 180.0f)) throw InputError("--fov must be between 0 and 180 degrees (exclusive)");
+            c.fov = f;
+        } else if (flag == "--light") c.lights.push_back(Arguments::toVec3(flag, args.valueOf(flag)));
+        else if (flag == "--background") {
+            glm::vec3 b = Arguments::toVec3(flag, args.valueOf(flag));
+            if (b.x < 0 || b.y < 0 || b.z < 0) throw InputError("--background must not be negative");
+            c.background = b;
+        } else if (flag == "--stats") c.statsPath = args.valueOf(flag);
+        else if (flag == "--iteration-budget") c.gpu.iterationBudget = Arguments::toUint(flag, args.valueOf(flag), 16, 1u << 24);
+        else if (flag == "--tile") c.gpu.tileSize = Arguments::toUint(flag, args.valueOf(flag), 8, 4096);
+        else if (flag.rfind("-", 0) == 0) throw InputError("unknown option " + flag + " (see vitrum render --help)");
+        else if (c.scenePath.empty()) c.scenePath = flag;
+        else throw InputError("more than one scene given: \"" + c.scenePath + "\" and \"" + flag + "\"");
+    }
+    if (c.scenePath.empty()) throw InputError("no scene given (see vitrum render --help)");
+    if (c.outputPath.empty()) throw InputError("no output given: add -o OUT.png (or .pfm, .hdr)");
+    if (!hasExtension(c.outputPath, {".png", ".pfm", ".hdr"}))
+        throw InputError(c.outputPath + ": the output must end in .png, .pfm or .hdr");
+    for (const std::string& out : {c.outputPath, c.statsPath}) {
+        // Fail before any long work when the output cannot be written where asked.
+        if (out.empty()) continue;
+        std::filesystem::path parent = std::filesystem::path(out).parent_path();
+        if (!parent.empty() && !std::filesystem::is_directory(parent))
+            throw InputError(out + ": cannot write the file: " + parent.string() + " is not a directory");
+    }
+    if (!c.statsPath.empty() && !hasExtension(c.statsPath, {".json"}))
+        throw InputError(c.statsPath + ": --stats must name a .json file");
+    return c;
+}
+
+void applyOverrides(const RenderCommand& c, Scene& scene) {
+    if (c.width) scene.camera.width = *c.width;
+    if (c.height) scene.camera.height = *c.height;
+    if (c.spp) scene.settings.samplesPerPixel = *c.spp;
+    if (c.maxDepth) scene.settings.maxDepth = *c.maxDepth;
+    if (c.minWeight) scene.settings.minWeight = *c.minWeight;
+    if (c.fresnel) scene.settings.fresnel = *c.fresnel;
+    if (c.from) scene.camera.from = *c.from;
+    if (c.at) scene.camera.at = *c.at;
+    if (c.up) scene.camera.up = *c.up;
+    if (c.fov) scene.camera.fovY = *c.fov;
+    if (c.background) scene.background.colour = *c.background;
+    if (!c.lights.empty()) {
+        scene.lights.clear();
+        for (const glm::vec3& p : c.lights) scene.lights.push_back({.position = p, .colour = glm::vec3(1.0f)});
+    }
+    const Camera& cam = scene.camera;
+    glm::vec3 view = cam.from - cam.at;
+    if (glm::length(view) == 0.0f) throw InputError("the camera's from and at are the same point");
+    if (glm::length(glm::cross(cam.up, view)) <= 1e-6f * glm::length(cam.up) * glm::length(view))
+        throw InputError("the camera's up vector is parallel to its viewing direction");
+    if (std::uint64_t(cam.width) * cam.height > (1ull << 28))
+        throw InputError("the image is too large: " + std::to_string(cam.width) + "x" + std::to_string(cam.height));
+}
+
+}  // namespace
+
+int renderCommand(int argc, char** argv, int first) {
+    for (int i = first; i < argc; ++i)
+        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
+            std::cout << kRenderHelp;
+            return 0;
+        }
+    RenderCommand command = parse(argc, argv, first);
+    using Clock = std::chrono::steady_clock;
+    auto start = Clock::now();
+    Scene scene = loadScene(command.scenePath);
+    applyOverrides(command, scene);
+    double loadSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+
+    Bvh bvh = buildBvh(scene.triangles);
+
+    RenderStats stats;
+    stats.addPhase("load", loadSeconds);
+    stats.addPhase("bvh", bvh.stats.buildSeconds);
+    Image image;
+    {
+        ProgressBar progress("rendering");
+        auto onProgress = [&](double fraction) { progress.update(fraction); };
+        if (command.backend == Backend::Vulkan) {
+            auto deviceStart = Clock::now();
+            VulkanDevice device(command.device);
+            stats.addPhase("device", std::chrono::duration<double>(Clock::now() - deviceStart).count());
+            command.gpu.progress = onProgress;
+            image = renderVulkan(device, scene, bvh, command.gpu, stats);
+            if (device.validationMessages() > 0)
+                throw std::runtime_error(std::to_string(device.validationMessages()) +
+                                         " Vulkan validation messages (see above)");
+        } else {
+            ReferenceOptions options{.doublePrecision = command.doublePrecision,
+                                     .threads = command.threads,
+                                     .progress = onProgress};
+            image = renderReference(scene, bvh, options, stats);
+        }
+    }
+    auto writeStart = Clock::now();
+    writeImage(image, command.outputPath);
+    stats.addPhase("write", std::chrono::duration<double>(Clock::now() - writeStart).count());
+
+    double renderSeconds = stats.seconds("render");
+    double totalSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+    std::printf("device: %s (%s)\n", stats.device.c_str(), stats.backend.c_str());
+    std::printf("image: %ux%u, %u spp, max depth %u -> %s\n", scene.camera.width, scene.camera.height,
+                scene.settings.samplesPerPixel, scene.settings.maxDepth, command.outputPath.c_str());
+    std::printf("time: %.3f s rendering, %.3f s in all\n", renderSeconds, totalSeconds);
+    std::printf("rays: %llu (%.2f Mrays/s): %llu primary, %llu shadow, %llu reflection, %llu refraction\n",
+                (unsigned long long)stats.rays.total(),
+                renderSeconds > 0 ? double(stats.rays.total()) / renderSeconds * 1e-6 : 0.0,
+                (unsigned long long)stats.rays.primary, (unsigned long long)stats.rays.shadow,
+                (unsigned long long)stats.rays.reflection, (unsigned long long)stats.rays.refraction);
+    if (stats.limits.loopLimitSuspected || stats.limits.traversalStackOverflow || stats.limits.rayStackOverflow ||
+        stats.limits.mediumStackOverflow)
+        std::fprintf(stderr, "vitrum: warning: limits hit: see --stats (loop limit %llu, traversal stack %llu, "
+                             "ray stack %llu, medium stack %llu)\n",
+                     (unsigned long long)stats.limits.loopLimitSuspected,
+                     (unsigned long long)stats.limits.traversalStackOverflow,
+                     (unsigned long long)stats.limits.rayStackOverflow,
+                     (unsigned long long)stats.limits.mediumStackOverflow);
+    if (!command.statsPath.empty()) {
+        nlohmann::json json = toJson(stats);
+        json["scene"] = command.scenePath;
+        json["image"] = {{"width", scene.camera.width}, {"height", scene.camera.height}};
+        json["settings"] = {{"spp", scene.settings.samplesPerPixel},
+                            {"max_depth", scene.settings.maxDepth},
+                            {"min_weight", scene.settings.minWeight},
+                            {"fresnel", int(scene.settings.fresnel)}};
+        json["triangles"] = scene.triangles.size();
+        writeFileAtomically(command.statsPath, json.dump(2) + "\n");
+    }
+    return 0;
+}
+
+}  // namespace vitrum

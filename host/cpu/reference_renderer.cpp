@@ -1,0 +1,462 @@
+// The CPU reference renderer: docs/render-model.md as a recursive Whitted-style ray tree, one
+// function per material model, in float or double. The decisions the render model leaves open
+// are made the way shaders/trace.comp makes them, so that the two backends can be compared
+// pixel by pixel:
+//   - the hit point is interpolated from the barycentrics (Waechter and Binder recommend it over
+//     o + t d: its error scales with the triangle, not with the ray's length);
+//   - new rays start at offsetRayOrigin(p, n_g) on the side they go to, with tMin = 0;
+//   - a shadow ray runs from the offset point to the light as o + t (light - o), 0 < t < 1, any hit;
+//   - the ambient term of a light is not attenuated by inverse-square fall-off, the direct term is;
+//   - a light's shadow ray is traced only when its direct term is not zero.
+#include "cpu/reference_renderer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bvh/bvh_traversal.h"
+#include "cpu/optics.h"
+#include "cpu/ray_offset.h"
+#include "render/sampling.h"
+
+namespace vitrum {
+namespace {
+
+// Counters of one worker thread, summed at the end.
+struct TraceCounters {
+    RayCounts rays;
+    std::uint64_t depthLimit = 0;
+    std::uint64_t weightCuts = 0;
+    std::uint64_t totalInternalReflections = 0;
+    std::uint64_t absorbedEscapes = 0;
+    TraversalCounters traversal;
+
+    void addTo(RenderStats& stats) const {
+        stats.rays.primary += rays.primary;
+        stats.rays.shadow += rays.shadow;
+        stats.rays.reflection += rays.reflection;
+        stats.rays.refraction += rays.refraction;
+        stats.limits.depthLimit += depthLimit;
+        stats.limits.weightCuts += weightCuts;
+        stats.totalInternalReflections += totalInternalReflections;
+        stats.absorbedEscapes += absorbedEscapes;
+        stats.nodeVisits += traversal.nodeVisits;
+    }
+};
+
+// The material whose medium an object encloses: its first glass triangle's material, or its
+// first triangle's when it has no glass (the same choice as render/packed_scene.cpp).
+std::vector<std::uint32_t> objectMediumMaterials(const Scene& scene) {
+    constexpr std::uint32_t kUnset = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> result(scene.objectNames.size(), kUnset);
+    for (const Triangle& t : scene.triangles) {
+        if (t.object >= result.size()) result.resize(t.object + 1, kUnset);
+        std::uint32_t& slot = result[t.object];
+        const bool glass = scene.materials[t.material].model == MaterialModel::Glass;
+        if (slot == kUnset || (glass && scene.materials[slot].model != MaterialModel::Glass)) slot = t.material;
+    }
+    for (std::uint32_t& slot : result)
+        if (slot == kUnset) slot = 0;
+    return result;
+}
+
+// Surfaces of two objects closer than this fraction of the scene's diagonal along a ray are one
+// interface. Far above float rounding of coordinates (~1e-7), far below modelled gaps.
+constexpr double kTouchingTolerance = 1e-5;
+
+double sceneDiagonal(const Bvh& bvh) {
+    if (bvh.nodes.empty()) return 0.0;
+    return glm::length(glm::dvec3(bvh.nodes[0].boundsMax) - glm::dvec3(bvh.nodes[0].boundsMin));
+}
+
+template <class Real>
+class ReferenceTracer {
+public:
+    using Vec3 = glm::vec<3, Real>;
+    using Color = glm::vec<3, Real>;
+    using MediumStack = std::vector<std::uint32_t>;  // objects the ray is inside, innermost last
+
+    ReferenceTracer(const Scene& scene, const Bvh& bvh)
+        : scene_(scene),
+          bvh_(bvh),
+          vertices_(packTriangleVertices(bvh, scene.triangles)),
+          mediumMaterials_(objectMediumMaterials(scene)),
+          maxDepth_(scene.settings.maxDepth),
+          touchTolerance_(sceneDiagonal(bvh) * Real(kTouchingTolerance)),
+          minWeight_(Real(scene.settings.minWeight)) {
+        const Camera& c = scene.camera;
+        cameraFrom_ = Vec3(c.from);
+        cameraZ_ = glm::normalize(Vec3(c.from) - Vec3(c.at));
+        cameraX_ = glm::normalize(glm::cross(Vec3(c.up), cameraZ_));
+        cameraY_ = glm::cross(cameraZ_, cameraX_);
+        focal_ = Real(c.height) / (Real(2) * std::tan(glm::radians(Real(c.fovY)) / Real(2)));
+    }
+
+    // The averaged colour of pixel (x, y) over the scene's samples (box filter).
+    Color renderPixel(std::uint32_t x, std::uint32_t y, TraceCounters& counters) const {
+        const Camera& c = scene_.camera;
+        const std::uint32_t n = std::max(1u, scene_.settings.samplesPerPixel);
+        const std::uint32_t pixelIndex = y * c.width + x;  // wraps like the GPU's uint arithmetic
+        Color sum(0);
+        for (std::uint32_t k = 0; k < n; ++k) {
+            const glm::vec2 offset = stratifiedSample(pixelIndex, k, n);
+            const Real sx = Real(x) + Real(offset.x);
+            const Real sy = Real(y) + Real(offset.y);
+            const Vec3 d = glm::normalize((sx - Real(c.width) / Real(2)) * cameraX_ +
+                                          (Real(c.height) / Real(2) - sy) * cameraY_ - focal_ * cameraZ_);
+            if (maxDepth_ == 0) {
+                counters.depthLimit += 1;  // not even the primary ray may be traced
+                continue;
+            }
+            counters.rays.primary += 1;
+            sum += trace(cameraFrom_, d, 0, MediumStack{}, Color(1), counters);
+        }
+        return sum / Real(n);
+    }
+
+private:
+    struct Hit {
+        Real t;
+        Vec3 position;
+        Vec3 geometricNormal;  // unit, as wound (outward for a closed mesh)
+        Vec3 shadingNormal;    // unit, interpolated
+        glm::vec<2, Real> uv;
+        const Material* material;
+        std::uint32_t object;
+    };
+
+    // Radiance arriving at the ray's origin along direction d (unit). `weight` is the product of
+    // the path factors so far, used only for min_weight.
+    Color trace(const Vec3& origin, const Vec3& d, std::uint32_t depth, const MediumStack& media, const Color& weight,
+                TraceCounters& counters) const {
+        Ray<Real> ray{origin, d, Real(0), std::numeric_limits<Real>::max()};
+        const auto found = traceClosest<Real>(bvh_.nodes, vertices_, ray, &counters.traversal);
+        const Color mu = mediumAttenuation(media);
+        if (!found) {
+            Color escaped = Color(scene_.background.colour);
+            if (glm::any(glm::greaterThan(mu, Color(0)))) {
+                // Only an open mesh lets a ray leave the scene inside an absorbing medium: the
+                // infinite segment absorbs everything in those channels (render model, "Media").
+                for (int i = 0; i < 3; ++i)
+                    if (mu[i] > Real(0)) escaped[i] = Real(0);
+                counters.absorbedEscapes += 1;
+            }
+            return escaped;
+        }
+        const Hit hit = describeHit(*found);
+        // Beer-Lambert over the segment just travelled; air (mu = 0) gives 1 (lecture: l = 0 in air).
+        const Color transmittance = optics::beerLambert(mu, hit.t);
+        const Color w = weight * transmittance;
+        Color colour;
+        switch (hit.material->model) {
+            case MaterialModel::Glass: colour = shadeGlass(hit, origin, d, depth, media, w, counters); break;
+            default: colour = shadeOpaque(hit, d, depth, media, w, counters); break;
+        }
+        return colour * transmittance;
+    }
+
+    Hit describeHit(const TriangleHit<Real>& found) const {
+        const gpu::TriangleVertices& tv = vertices_[found.triangle];
+        const Triangle& tri = scene_.triangles[bvh_.triangleOrder[found.triangle]];
+        const Vec3 v0(tv.v0), v1(tv.v1), v2(tv.v2);
+        const Real w0 = Real(1) - found.u - found.v;
+        Hit hit;
+        hit.t = found.t;
+        hit.position = w0 * v0 + found.u * v1 + found.v * v2;
+        hit.geometricNormal = glm::normalize(glm::cross(v1 - v0, v2 - v0));
+        const Vec3 interpolated =
+            w0 * Vec3(tri.normal[0]) + found.u * Vec3(tri.normal[1]) + found.v * Vec3(tri.normal[2]);
+        const Real length = glm::length(interpolated);
+        hit.shadingNormal = length > Real(0) && std::isfinite(length) ? interpolated / length : hit.geometricNormal;
+        hit.uv = w0 * glm::vec<2, Real>(tri.uv[0]) + found.u * glm::vec<2, Real>(tri.uv[1]) +
+                 found.v * glm::vec<2, Real>(tri.uv[2]);
+        hit.material = &scene_.materials[tri.material];
+        hit.object = tri.object;
+        return hit;
+    }
+
+    // ---- Opaque materials: normal, Lambert, Phong (opaque dielectric), mirror ----------------
+
+    Color shadeOpaque(Hit hit, const Vec3& d, std::uint32_t depth, const MediumStack& media, const Color& weight,
+                      TraceCounters& counters) const {
+        // Both normals face the incoming ray (render model: "flipped to face the incoming ray").
+        if (glm::dot(hit.geometricNormal, d) > Real(0)) hit.geometricNormal = -hit.geometricNormal;
+        if (glm::dot(hit.shadingNormal, d) > Real(0)) hit.shadingNormal = -hit.shadingNormal;
+        const Material& m = *hit.material;
+        switch (m.model) {
+            case MaterialModel::Normal: return (hit.shadingNormal + Real(1)) / Real(2);
+            case MaterialModel::Lambert: return directLight(hit, d, counters);
+            case MaterialModel::Mirror: {
+                // m_s * C_refl
+                const Color ms(m.specular);
+                return ms * traceReflection(hit, d, depth, media, weight * ms, counters);
+            }
+            case MaterialModel::Phong:
+            default: {
+                // Lecture, "Composition": C = C_phong + R(theta_i) C_refl, R Schlick's with F0 from
+                // the current medium's IOR and Ni; the reflection is not tinted.
+                const Real n1 = mediumIor(media);
+                const Real n2 = Real(m.ior);
+                const Real cosI = -glm::dot(d, hit.shadingNormal);
+                const Real r = optics::fresnel(FresnelModel::Schlick, n1, n2, cosI);
+                const Color phong = directLight(hit, d, counters);
+                return phong + r * traceReflection(hit, d, depth, media, weight * r, counters);
+            }
+        }
+    }
+
+    // sum over lights l_c (m_a + V(p, l_p) (m_d max(0, n.l) [+ m_s max(0, l_r.v)^Ns for Phong])).
+    Color directLight(const Hit& hit, const Vec3& d, TraceCounters& counters) const {
+        const Material& m = *hit.material;
+        const Color diffuse = diffuseColour(m, hit.uv);
+        const Vec3& n = hit.shadingNormal;
+        Color sum(0);
+        for (const PointLight& light : scene_.lights) {
+            sum += Color(light.colour) * Color(m.ambient);
+            const Vec3 toLight = Vec3(light.position) - hit.position;
+            const Real distanceSquared = glm::dot(toLight, toLight);
+            const Vec3 l = toLight / std::sqrt(distanceSquared);
+            Color colour(light.colour);
+            if (light.inverseSquare) colour /= distanceSquared;
+            const Real nl = glm::dot(n, l);
+            Color direct = diffuse * std::max(Real(0), nl);
+            if (m.model == MaterialModel::Phong) {
+                const Vec3 lr = Real(2) * nl * n - l;  // l reflected about n
+                const Real c = std::max(Real(0), glm::dot(lr, -d));
+                const Real ns = Real(m.shininess);
+                // pow(0, 0) = 1 by convention; written out so the GPU's pow can match it.
+                const Real highlight = c > Real(0) ? std::pow(c, ns) : (ns == Real(0) ? Real(1) : Real(0));
+                direct += Color(m.specular) * highlight;
+            }
+            direct *= colour;
+            if (direct == Color(0)) continue;  // nothing to shadow
+            if (visible(hit, Vec3(light.position), counters)) sum += direct;
+        }
+        return sum;
+    }
+
+    // V(p, l_p): no surface (glass included) strictly between the offset hit point and the light.
+    bool visible(const Hit& hit, const Vec3& lightPosition, TraceCounters& counters) const {
+        const Vec3 origin = offsetRayOrigin(hit.position, hit.geometricNormal);
+        counters.rays.shadow += 1;
+        // t in units of the whole segment: 0 < t < 1 excludes the light's own position.
+        const Ray<Real> shadow{origin, lightPosition - origin, Real(0), Real(1)};
+        return !traceAny<Real>(bvh_.nodes, vertices_, shadow, &counters.traversal);
+    }
+
+    // m_d: Kd, or the bilinear texel of map_Kd at (u, 1 - v) (render model, "Geometry and camera").
+    Color diffuseColour(const Material& m, const glm::vec<2, Real>& uv) const {
+        if (m.diffuseTexture < 0 || std::size_t(m.diffuseTexture) >= scene_.textures.size()) return Color(m.diffuse);
+        return sampleBilinear(scene_.textures[std::size_t(m.diffuseTexture)], uv);
+    }
+
+    // Bilinear filtering with wrap-around addressing in u and v; texel centres at (i + 0.5) / size.
+    // The same steps as shaders/texture.glsl.
+    static Color sampleBilinear(const Texture& texture, const glm::vec<2, Real>& uv) {
+        const int w = texture.width, h = texture.height;
+        if (w <= 0 || h <= 0 || texture.texels.size() < std::size_t(w) * std::size_t(h)) return Color(0);
+        const Real u = uv.x - std::floor(uv.x);
+        const Real flipped = Real(1) - uv.y;
+        const Real v = flipped - std::floor(flipped);
+        if (!std::isfinite(u) || !std::isfinite(v)) return Color(0);
+        const Real x = u * Real(w) - Real(0.5);
+        const Real y = v * Real(h) - Real(0.5);
+        const Real x0 = std::floor(x), y0 = std::floor(y);
+        const Real fx = x - x0, fy = y - y0;
+        const int ix = int(x0), iy = int(y0);
+        auto texel = [&](int tx, int ty) {
+            tx = ((tx % w) + w) % w;
+            ty = ((ty % h) + h) % h;
+            return Color(texture.texels[std::size_t(ty) * std::size_t(w) + std::size_t(tx)]);
+        };
+        const Color top = glm::mix(texel(ix, iy), texel(ix + 1, iy), fx);
+        const Color bottom = glm::mix(texel(ix, iy + 1), texel(ix + 1, iy + 1), fx);
+        return glm::mix(top, bottom, fy);
+    }
+
+    // C_refl of an opaque surface: the reflected ray keeps the medium stack.
+    Color traceReflection(const Hit& hit, const Vec3& d, std::uint32_t depth, const MediumStack& media,
+                          const Color& weight, TraceCounters& counters) const {
+        const Vec3 origin = offsetRayOrigin(hit.position, hit.geometricNormal);
+        return traceChild(origin, optics::reflect(d, hit.shadingNormal), depth, media, weight, true, counters);
+    }
+
+    // A secondary ray of depth + 1, unless max_depth or min_weight stops it (both counted).
+    Color traceChild(const Vec3& origin, const Vec3& direction, std::uint32_t depth, const MediumStack& media,
+                     const Color& weight, bool reflection, TraceCounters& counters) const {
+        if (depth + 1 >= maxDepth_) {
+            counters.depthLimit += 1;
+            return Color(0);
+        }
+        if (glm::all(glm::lessThan(weight, Color(minWeight_)))) {
+            counters.weightCuts += 1;
+            return Color(0);
+        }
+        if (reflection) counters.rays.reflection += 1;
+        else counters.rays.refraction += 1;
+        return trace(origin, direction, depth + 1, media, weight, counters);
+    }
+
+    // ---- Glass -------------------------------------------------------------------------------
+
+    // [R C_refl + (1 - R) C_refr] (lecture, "Attenuation of Refracted Ray in Glass"; T_BL is applied
+    // by trace() to the segment that led here).
+    Color shadeGlass(const Hit& hit, const Vec3& rayOrigin, const Vec3& d, std::uint32_t depth,
+                     const MediumStack& media, const Color& weight, TraceCounters& counters) const {
+        // Entering or leaving the object is decided by the geometric normal of the consistently
+        // wound, closed mesh (lecture, "Problematic Cases", assumption 1).
+        const bool entering = glm::dot(d, hit.geometricNormal) < Real(0);
+        std::vector<Crossing> crossings{{hit.object, entering}};
+        Real farT = hit.t;
+        findTouchingCrossings(hit, rayOrigin, d, crossings, farT, counters);
+
+        // The stack on the far side: leave, then enter (for touching objects the ray leaves one
+        // and enters the other at the same point, whatever order the hits came in).
+        MediumStack inside = media;
+        for (const Crossing& c : crossings) {
+            if (c.entering) continue;
+            // Remove the innermost entry of the object (normally the top of the stack). A ray that
+            // leaves an object it never entered (open mesh, or a ray started inside) keeps its stack.
+            const auto it = std::find(inside.rbegin(), inside.rend(), c.object);
+            if (it != inside.rend()) inside.erase(std::next(it).base());
+        }
+        for (const Crossing& c : crossings)
+            if (c.entering) inside.push_back(c.object);
+        const Real n1 = entering ? mediumIor(media) : Real(hit.material->ior);
+        const Real n2 = entering && crossings.size() == 1 ? Real(hit.material->ior) : mediumIor(inside);
+
+        const Vec3 facing = entering ? hit.geometricNormal : -hit.geometricNormal;  // towards the incoming side
+        Vec3 n = entering ? hit.shadingNormal : -hit.shadingNormal;
+        if (glm::dot(n, d) >= Real(0)) n = facing;  // an interpolated normal on the wrong side: use the true one
+        // The transmitted ray starts beyond every surface of the interface.
+        const Vec3 through = crossings.size() == 1 ? hit.position : rayOrigin + farT * d;
+        if (n1 == n2) {
+            // Index-matched: no optical interface. The same ray goes on, at the same depth, with the
+            // updated stack (render model, "The ray tree").
+            return trace(offsetRayOrigin(through, -facing), d, depth, inside, weight, counters);
+        }
+        const Real eta = n1 / n2;
+        const Real cosI = -glm::dot(d, n);
+        const Real r = optics::fresnel(scene_.settings.fresnel, n1, n2, cosI);
+        const auto refracted = optics::refract(d, n, eta);
+        Color colour(0);
+        if (refracted) {
+            const Color wt = weight * (Real(1) - r);
+            colour += (Real(1) - r) *
+                      traceChild(offsetRayOrigin(through, -facing), *refracted, depth, inside, wt, false, counters);
+        } else {
+            counters.totalInternalReflections += 1;  // R = 1 (the Fresnel functions return it)
+        }
+        // The reflected ray stays in the medium it came from: it keeps the old stack.
+        colour += r * traceChild(offsetRayOrigin(hit.position, facing), optics::reflect(d, n), depth, media,
+                                 weight * r, true, counters);
+        return colour;
+    }
+
+    struct Crossing {
+        std::uint32_t object;
+        bool entering;
+    };
+
+    // Touching objects (lecture, "Problematic Cases": "Two objects have one or more contact
+    // points"): glass surfaces of other objects crossed within a scene-scale tolerance of the hit
+    // form one interface with it (render model, "Media"), e.g. glass -> glass at P2, never
+    // glass -> air -> glass. Appends one crossing per other object; farT becomes the farthest.
+    void findTouchingCrossings(const Hit& hit, const Vec3& rayOrigin, const Vec3& d, std::vector<Crossing>& crossings,
+                               Real& farT, TraceCounters& counters) const {
+        thread_local std::vector<TriangleHit<Real>> hits;
+        hits.clear();
+        const Ray<Real> probe{rayOrigin, d, std::max(Real(0), hit.t - touchTolerance_), hit.t + touchTolerance_};
+        traceAll<Real>(bvh_.nodes, vertices_, probe, hits, &counters.traversal);
+        for (const TriangleHit<Real>& h : hits) {
+            const Triangle& tri = scene_.triangles[bvh_.triangleOrder[h.triangle]];
+            if (scene_.materials[tri.material].model != MaterialModel::Glass) continue;
+            const bool known = std::any_of(crossings.begin(), crossings.end(),
+                                           [&](const Crossing& c) { return c.object == tri.object; });
+            if (known) continue;
+            const gpu::TriangleVertices& tv = vertices_[h.triangle];
+            const Vec3 v0(tv.v0);
+            const Vec3 ng = glm::cross(Vec3(tv.v1) - v0, Vec3(tv.v2) - v0);
+            crossings.push_back({tri.object, glm::dot(d, ng) < Real(0)});
+            farT = std::max(farT, h.t);
+        }
+    }
+
+    // IOR of the medium a ray is in: the innermost object's, or the scene's air.
+    Real mediumIor(const MediumStack& media) const {
+        if (media.empty()) return Real(scene_.airIor);
+        return Real(scene_.materials[mediumMaterials_[media.back()]].ior);
+    }
+
+    Color mediumAttenuation(const MediumStack& media) const {
+        if (media.empty()) return Color(0);
+        return Color(scene_.materials[mediumMaterials_[media.back()]].attenuation);
+    }
+
+    const Scene& scene_;
+    const Bvh& bvh_;
+    std::vector<gpu::TriangleVertices> vertices_;
+    std::vector<std::uint32_t> mediumMaterials_;
+    std::uint32_t maxDepth_;
+    Real touchTolerance_;  // surfaces closer than this along a ray touch
+    Real minWeight_;
+    Vec3 cameraFrom_, cameraX_, cameraY_, cameraZ_;
+    Real focal_;
+};
+
+// Rows are handed out one at a time from an atomic counter, so threads stay busy whatever the
+// cost of each row.
+template <class Real>
+void renderRows(const Scene& scene, const Bvh& bvh, unsigned threadCount, const ReferenceOptions& options,
+                Image& image, RenderStats& stats) {
+    const ReferenceTracer<Real> tracer(scene, bvh);
+    const std::uint32_t width = scene.camera.width, height = scene.camera.height;
+    std::atomic<std::uint32_t> nextRow{0};
+    std::atomic<std::uint32_t> rowsDone{0};
+    std::mutex statsMutex;
+    auto worker = [&]() {
+        TraceCounters counters;
+        for (std::uint32_t y = nextRow++; y < height; y = nextRow++) {
+            for (std::uint32_t x = 0; x < width; ++x) {
+                const glm::vec<3, Real> c = tracer.renderPixel(x, y, counters);
+                // The render model's invariant: no NaN, Inf or negative value in any pixel.
+                glm::vec3 pixel(c);
+                for (int i = 0; i < 3; ++i)
+                    if (!std::isfinite(pixel[i]) || pixel[i] < 0.0f) pixel[i] = 0.0f;
+                image.at(x, y) = pixel;
+            }
+            const std::uint32_t done = ++rowsDone;
+            if (options.progress) options.progress(double(done) / double(height));
+        }
+        std::lock_guard lock(statsMutex);
+        counters.addTo(stats);
+    };
+    std::vector<std::thread> threads;
+    for (unsigned i = 1; i < threadCount; ++i) threads.emplace_back(worker);
+    worker();
+    for (std::thread& t : threads) t.join();
+}
+
+}  // namespace
+
+Image renderReference(const Scene& scene, const Bvh& bvh, const ReferenceOptions& options, RenderStats& stats) {
+    const auto start = std::chrono::steady_clock::now();
+    unsigned threads = options.threads != 0 ? options.threads : std::thread::hardware_concurrency();
+    threads = std::max(1u, std::min(threads, std::max(1u, scene.camera.height)));
+    Image image(scene.camera.width, scene.camera.height);
+    stats.backend = "cpu";
+    stats.device = std::string("CPU reference (") + (options.doublePrecision ? "double" : "float") + "), " +
+                   std::to_string(threads) + (threads == 1 ? " thread" : " threads");
+    if (options.doublePrecision) renderRows<double>(scene, bvh, threads, options, image, stats);
+    else renderRows<float>(scene, bvh, threads, options, image, stats);
+    stats.addPhase("render", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    return image;
+}
+
+}  // namespace vitrum

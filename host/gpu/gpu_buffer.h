@@ -1,0 +1,55 @@
+// A storage or uniform buffer in host-visible memory, mapped for its whole life (on lavapipe all
+// memory is host memory; on a discrete GPU this prefers memory that is both device-local and
+// mappable where the device has it).
+#pragma once
+
+#include <cstring>
+#include <span>
+#include <string>
+
+#include "gpu/vulkan_device.h"
+#include "gpu/vulkan_handle.h"
+
+namespace vitrum {
+
+class GpuBuffer {
+public:
+    GpuBuffer() = default;
+    // `what` names the buffer in errors ("BVH nodes needs 300 MiB, the device allows 128 MiB").
+    GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsageFlags usage, const std::string& what);
+    ~GpuBuffer();
+    GpuBuffer(GpuBuffer&&) noexcept = default;
+    GpuBuffer& operator=(GpuBuffer&&) noexcept = default;
+
+    VkBuffer buffer() const { return buffer_.get(); }
+    VkDeviceSize size() const { return size_; }
+    void* mapped() const { return mapped_; }
+
+    template <class T>
+    void upload(std::span<const T> data) {
+        std::memcpy(mapped_, data.data(), data.size_bytes());
+    }
+    template <class T>
+    T* as() const {
+        return static_cast<T*>(mapped_);
+    }
+
+private:
+    UniqueBuffer buffer_;
+    UniqueMemory memory_;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkDeviceSize size_ = 0;
+    void* mapped_ = nullptr;
+};
+
+// A storage buffer holding `data` (at least 16 bytes: Vulkan has no empty buffers). Checks the
+// size against the device's maxStorageBufferRange first.
+template <class T>
+GpuBuffer makeStorageBuffer(const VulkanDevice& device, std::span<const T> data, const std::string& what) {
+    VkDeviceSize size = std::max<VkDeviceSize>(data.size_bytes(), 16);
+    GpuBuffer buffer(device, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, what);
+    buffer.upload(data);
+    return buffer;
+}
+
+}  // namespace vitrum

@@ -1,0 +1,274 @@
+#include "gpu/vulkan_device.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+
+#include "common/error.h"
+#include "gpu/vulkan_error.h"
+
+namespace vitrum {
+namespace {
+
+std::atomic<std::uint32_t> gValidationMessages{0};
+
+bool validationRequested() {
+    const char* value = std::getenv("VITRUM_VALIDATION");
+    return value && std::strcmp(value, "0") != 0;
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                                   VkDebugUtilsMessageTypeFlagsEXT,
+                                                   const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
+    ++gValidationMessages;
+    std::cerr << "vitrum: Vulkan validation: " << (data && data->pMessage ? data->pMessage : "(no message)") << "\n";
+    return VK_FALSE;
+}
+
+const char* deviceTypeName(VkPhysicalDeviceType type) {
+    switch (type) {
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+        default: return "other";
+    }
+}
+
+VkInstance createInstance(bool validation) {
+    VkApplicationInfo app{
+        .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+        .pApplicationName = "vitrum",
+        .applicationVersion = VK_MAKE_VERSION(0, 1, 0),
+        .pEngineName = "vitrum",
+        .engineVersion = VK_MAKE_VERSION(0, 1, 0),
+        .apiVersion = VK_API_VERSION_1_2,
+    };
+    const char* layer = "VK_LAYER_KHRONOS_validation";
+    const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+    VkInstanceCreateInfo info{
+        .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+        .pApplicationInfo = &app,
+        .enabledLayerCount = validation ? 1u : 0u,
+        .ppEnabledLayerNames = validation ? &layer : nullptr,
+        .enabledExtensionCount = validation ? 1u : 0u,
+        .ppEnabledExtensionNames = validation ? &extension : nullptr,
+    };
+    VkInstance instance = VK_NULL_HANDLE;
+    VkResult result = vkCreateInstance(&info, nullptr, &instance);
+    if (result == VK_ERROR_LAYER_NOT_PRESENT)
+        throw VulkanError(result, "VITRUM_VALIDATION is set but the Khronos validation layer is not installed "
+                                  "(Debian package vulkan-validationlayers)");
+    VK_CHECK(result);
+    return instance;
+}
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
+    std::uint32_t count = 0;
+    VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, nullptr));
+    std::vector<VkPhysicalDevice> devices(count);
+    VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
+    return devices;
+}
+
+std::string lowercase(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return s;
+}
+
+// Index into `devices` per the selector rules in the header.
+std::size_t selectDevice(const std::vector<VkPhysicalDevice>& devices, const std::string& selector) {
+    std::vector<VkPhysicalDeviceProperties> props(devices.size());
+    for (std::size_t i = 0; i < devices.size(); ++i) vkGetPhysicalDeviceProperties(devices[i], &props[i]);
+    std::string known;
+    for (std::size_t i = 0; i < devices.size(); ++i)
+        known += (i ? ", " : "") + std::to_string(i) + ": " + props[i].deviceName;
+    if (devices.empty())
+        throw InputError("no Vulkan device found (install Debian's mesa-vulkan-drivers for lavapipe)");
+    if (selector.empty()) {
+        for (auto wanted : {VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU})
+            for (std::size_t i = 0; i < devices.size(); ++i)
+                if (props[i].deviceType == wanted && props[i].apiVersion >= VK_API_VERSION_1_2) return i;
+        return 0;
+    }
+    if (std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); })) {
+        std::size_t index = std::stoul(selector);
+        if (index >= devices.size())
+            throw InputError("--device " + selector + ": there are only " + std::to_string(devices.size()) +
+                             " Vulkan devices (" + known + ")");
+        return index;
+    }
+    for (std::size_t i = 0; i < devices.size(); ++i)
+        if (lowercase(props[i].deviceName).find(lowercase(selector)) != std::string::npos) return i;
+    throw InputError("--device " + selector + ": no Vulkan device has that in its name (" + known + ")");
+}
+
+}  // namespace
+
+std::vector<DeviceDescription> VulkanDevice::listDevices() {
+    VkInstance instance = createInstance(false);
+    std::vector<DeviceDescription> result;
+    try {
+        auto devices = physicalDevices(instance);
+        for (std::uint32_t i = 0; i < devices.size(); ++i) {
+            VkPhysicalDeviceProperties p;
+            vkGetPhysicalDeviceProperties(devices[i], &p);
+            result.push_back({i, p.deviceName, deviceTypeName(p.deviceType), p.apiVersion});
+        }
+    } catch (...) {
+        vkDestroyInstance(instance, nullptr);
+        throw;
+    }
+    vkDestroyInstance(instance, nullptr);
+    return result;
+}
+
+VulkanDevice::VulkanDevice(const std::string& selector) {
+    bool validation = validationRequested();
+    instance_ = createInstance(validation);
+    try {
+        if (validation) {
+            VkDebugUtilsMessengerCreateInfoEXT info{
+                .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+                .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                   VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+                .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
+                .pfnUserCallback = onValidationMessage,
+            };
+            auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+                vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+            if (!create) throw VulkanError(VK_ERROR_EXTENSION_NOT_PRESENT, "vkCreateDebugUtilsMessengerEXT missing");
+            VK_CHECK(create(instance_, &info, nullptr, &messenger_));
+        }
+        auto devices = physicalDevices(instance_);
+        physicalDevice_ = devices[selectDevice(devices, selector)];
+        vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
+        vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+        if (properties_.apiVersion < VK_API_VERSION_1_2)
+            throw InputError(std::string("Vulkan device ") + properties_.deviceName + " supports only Vulkan " +
+                             std::to_string(VK_API_VERSION_MAJOR(properties_.apiVersion)) + "." +
+                             std::to_string(VK_API_VERSION_MINOR(properties_.apiVersion)) + "; vitrum needs 1.2");
+
+        std::uint32_t familyCount = 0;
+        vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
+        std::vector<VkQueueFamilyProperties> families(familyCount);
+        vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, families.data());
+        queueFamily_ = familyCount;
+        for (std::uint32_t i = 0; i < familyCount; ++i)
+            if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
+                queueFamily_ = i;
+                break;
+            }
+        if (queueFamily_ == familyCount)
+            throw InputError(std::string("Vulkan device ") + properties_.deviceName + " has no compute queue");
+
+        float priority = 1.0f;
+        VkDeviceQueueCreateInfo queueInfo{
+            .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+            .queueFamilyIndex = queueFamily_,
+            .queueCount = 1,
+            .pQueuePriorities = &priority,
+        };
+        VkDeviceCreateInfo deviceInfo{
+            .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+            .queueCreateInfoCount = 1,
+            .pQueueCreateInfos = &queueInfo,
+        };
+        VK_CHECK(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device_));
+        vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+
+        VkCommandPoolCreateInfo poolInfo{
+            .sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+            .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+            .queueFamilyIndex = queueFamily_,
+        };
+        VkCommandPool pool = VK_NULL_HANDLE;
+        VK_CHECK(vkCreateCommandPool(device_, &poolInfo, nullptr, &pool));
+        commandPool_ = UniqueCommandPool(device_, pool);
+        VkFenceCreateInfo fenceInfo{.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        VkFence fence = VK_NULL_HANDLE;
+        VK_CHECK(vkCreateFence(device_, &fenceInfo, nullptr, &fence));
+        fence_ = UniqueFence(device_, fence);
+    } catch (...) {
+        release();
+        throw;
+    }
+}
+
+VulkanDevice::~VulkanDevice() { release(); }
+
+void VulkanDevice::release() {
+    fence_.reset();
+    commandPool_.reset();
+    if (device_) vkDestroyDevice(device_, nullptr);
+    device_ = VK_NULL_HANDLE;
+    if (messenger_) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+        if (destroy) destroy(instance_, messenger_, nullptr);
+        messenger_ = VK_NULL_HANDLE;
+    }
+    if (instance_) vkDestroyInstance(instance_, nullptr);
+    instance_ = VK_NULL_HANDLE;
+}
+
+std::uint32_t VulkanDevice::validationMessages() const { return gValidationMessages.load(); }
+
+std::uint32_t VulkanDevice::findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required) const {
+    for (std::uint32_t i = 0; i < memoryProperties_.memoryTypeCount; ++i)
+        if ((typeBits & (1u << i)) && (memoryProperties_.memoryTypes[i].propertyFlags & required) == required)
+            return i;
+    throw VulkanError(VK_ERROR_FEATURE_NOT_PRESENT, "no suitable Vulkan memory type on " + name());
+}
+
+std::uint32_t VulkanDevice::findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
+                                           VkMemoryPropertyFlags preferred) const {
+    for (std::uint32_t i = 0; i < memoryProperties_.memoryTypeCount; ++i) {
+        auto flags = memoryProperties_.memoryTypes[i].propertyFlags;
+        if ((typeBits & (1u << i)) && (flags & (required | preferred)) == (required | preferred)) return i;
+    }
+    return findMemoryType(typeBits, required);
+}
+
+VkCommandBuffer VulkanDevice::beginCommands() {
+    VkCommandBufferAllocateInfo info{
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+        .commandPool = commandPool_.get(),
+        .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+        .commandBufferCount = 1,
+    };
+    VkCommandBuffer commands = VK_NULL_HANDLE;
+    VK_CHECK(vkAllocateCommandBuffers(device_, &info, &commands));
+    VkCommandBufferBeginInfo begin{
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
+    };
+    VK_CHECK(vkBeginCommandBuffer(commands, &begin));
+    return commands;
+}
+
+void VulkanDevice::endSubmitWait(VkCommandBuffer commands) {
+    struct FreeOnExit {
+        VkDevice device;
+        VkCommandPool pool;
+        VkCommandBuffer commands;
+        ~FreeOnExit() { vkFreeCommandBuffers(device, pool, 1, &commands); }
+    } freeOnExit{device_, commandPool_.get(), commands};
+    VK_CHECK(vkEndCommandBuffer(commands));
+    VkSubmitInfo submit{
+        .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
+        .commandBufferCount = 1,
+        .pCommandBuffers = &commands,
+    };
+    VkFence fence = fence_.get();
+    VK_CHECK(vkResetFences(device_, 1, &fence));
+    VK_CHECK(vkQueueSubmit(queue_, 1, &submit, fence));
+    VK_CHECK(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX));
+}
+
+}  // namespace vitrum

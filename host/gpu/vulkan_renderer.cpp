@@ -1,0 +1,124 @@
+#include "gpu/vulkan_renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+#include "gpu/gpu_buffer.h"
+#include "gpu/gpu_layout.h"
+#include "gpu/trace_pipeline.h"
+#include "render/packed_scene.h"
+
+namespace vitrum {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+template <class T>
+std::span<const T> spanOf(const std::vector<T>& v) {
+    return std::span<const T>(v.data(), v.size());
+}
+
+void addCounters(RenderStats& stats, const std::uint32_t* counters) {
+    stats.rays.primary += counters[gpu::kStatPrimaryRays];
+    stats.rays.shadow += counters[gpu::kStatShadowRays];
+    stats.rays.reflection += counters[gpu::kStatReflectionRays];
+    stats.rays.refraction += counters[gpu::kStatRefractionRays];
+    stats.nodeVisits += counters[gpu::kStatNodeVisits];
+    stats.limits.depthLimit += counters[gpu::kStatDepthLimitHits];
+    stats.limits.traversalStackOverflow += counters[gpu::kStatTraversalStackOverflow];
+    stats.limits.loopLimitSuspected += counters[gpu::kStatLoopLimitSuspected];
+    stats.limits.rayStackOverflow += counters[gpu::kStatRayStackOverflow];
+    stats.limits.mediumStackOverflow += counters[gpu::kStatMediumStackOverflow];
+    stats.limits.weightCuts += counters[gpu::kStatWeightCuts];
+    stats.totalInternalReflections += counters[gpu::kStatTotalInternalReflections];
+    stats.absorbedEscapes += counters[gpu::kStatAbsorbedEscapes];
+    stats.loopSteps += counters[gpu::kStatTraversalSteps];
+    stats.maxPixelLoopSteps = std::max<std::uint64_t>(stats.maxPixelLoopSteps, counters[gpu::kStatMaxPixelSteps]);
+}
+
+}  // namespace
+
+Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, const VulkanRenderOptions& options,
+                   RenderStats& stats) {
+    stats.backend = "vulkan";
+    stats.device = device.name();
+
+    auto start = Clock::now();
+    PackedScene packed = packScene(scene, bvh);
+    const std::uint32_t width = scene.camera.width;
+    const std::uint32_t height = scene.camera.height;
+    const std::uint32_t tileSize = std::max(8u, options.tileSize);
+    const std::uint32_t tileWidth = std::min(tileSize, width);
+    const std::uint32_t tileHeight = std::min(tileSize, height);
+
+    GpuBuffer params(device, sizeof(gpu::RenderParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "render parameters");
+    GpuBuffer nodes = makeStorageBuffer(device, spanOf(packed.nodes), "BVH nodes");
+    GpuBuffer vertices = makeStorageBuffer(device, spanOf(packed.vertices), "triangle vertices");
+    GpuBuffer shading = makeStorageBuffer(device, spanOf(packed.shading), "triangle normals and uvs");
+    GpuBuffer materials = makeStorageBuffer(device, spanOf(packed.materials), "materials");
+    GpuBuffer lights = makeStorageBuffer(device, spanOf(packed.lights), "lights");
+    GpuBuffer textures = makeStorageBuffer(device, spanOf(packed.textures), "texture table");
+    GpuBuffer texels = makeStorageBuffer(device, spanOf(packed.texels), "texture texels");
+    GpuBuffer objectMaterials = makeStorageBuffer(device, spanOf(packed.objectMaterials), "object media");
+    GpuBuffer pixels(device, std::max<VkDeviceSize>(VkDeviceSize(width) * height * sizeof(glm::vec4), 16),
+                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "image");
+    GpuBuffer states(device, VkDeviceSize(tileWidth) * tileHeight * sizeof(gpu::TraceState),
+                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "trace state of one tile");
+    GpuBuffer counters(device, gpu::kStatCount * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                       "statistics");
+    stats.addPhase("upload", secondsSince(start));
+
+    start = Clock::now();
+    TracePipeline pipeline(device);
+    pipeline.bind({&params, &nodes, &vertices, &shading, &materials, &lights, &textures, &texels, &objectMaterials,
+                   &pixels, &states, &counters});
+    stats.addPhase("pipeline", secondsSince(start));
+
+    gpu::RenderParams p = makeRenderParams(scene);
+    p.counts.w = options.iterationBudget;
+    const std::uint32_t tilesX = (width + tileWidth - 1) / tileWidth;
+    const std::uint32_t tilesY = (height + tileHeight - 1) / tileHeight;
+    const std::uint32_t groupsX = (tileWidth + TracePipeline::kGroupSize - 1) / TracePipeline::kGroupSize;
+    const std::uint32_t groupsY = (tileHeight + TracePipeline::kGroupSize - 1) / TracePipeline::kGroupSize;
+    auto* counterValues = counters.as<std::uint32_t>();
+
+    start = Clock::now();
+    bool firstDispatch = true;
+    for (std::uint32_t ty = 0; ty < tilesY; ++ty) {
+        for (std::uint32_t tx = 0; tx < tilesX; ++tx) {
+            p.tile = glm::uvec4(tx * tileWidth, ty * tileHeight, tileWidth, tileHeight);
+            p.pass.x = 1;
+            for (;;) {
+                std::memcpy(params.mapped(), &p, sizeof(p));
+                std::memset(counterValues, 0, gpu::kStatCount * sizeof(std::uint32_t));
+                auto dispatchStart = Clock::now();
+                device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, groupsX, groupsY); });
+                if (firstDispatch) {
+                    // lavapipe compiles the kernel on its first dispatch.
+                    stats.addPhase("first dispatch", secondsSince(dispatchStart));
+                    firstDispatch = false;
+                }
+                ++stats.dispatches;
+                addCounters(stats, counterValues);
+                if (counterValues[gpu::kStatUnfinishedPixels] == 0) break;
+                p.pass.x = 0;
+            }
+            if (options.progress) options.progress(double(ty * tilesX + tx + 1) / double(tilesX * tilesY));
+        }
+    }
+    stats.addPhase("render", secondsSince(start));
+
+    start = Clock::now();
+    Image image(width, height);
+    const auto* values = pixels.as<glm::vec4>();
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = glm::vec3(values[i]);
+    stats.addPhase("readback", secondsSince(start));
+    return image;
+}
+
+}  // namespace vitrum

@@ -1,0 +1,28 @@
+// The Vulkan backend: uploads a packed scene, then renders the image tile by tile. Each tile is
+// dispatched again and again, each dispatch bounded to `iterationBudget` steps per pixel, until
+// every pixel of the tile has finished its ray tree (shaders/trace.comp explains why).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+
+#include "bvh/bvh.h"
+#include "gpu/vulkan_device.h"
+#include "image/image.h"
+#include "render/render_stats.h"
+#include "scene/scene.h"
+
+namespace vitrum {
+
+struct VulkanRenderOptions {
+    // Loop steps per pixel and dispatch. lavapipe ends any shader loop after 65,535 iterations;
+    // this stays far below. Larger values (tests only) let the driver's limit show.
+    std::uint32_t iterationBudget = 16384;
+    std::uint32_t tileSize = 128;  // pixels per side; the trace state of a tile is ~1.5 KiB per pixel
+    std::function<void(double)> progress;  // fraction done
+};
+
+Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, const VulkanRenderOptions& options,
+                   RenderStats& stats);
+
+}  // namespace vitrum

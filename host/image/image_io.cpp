@@ -1,0 +1,286 @@
+// Reading and writing images: PNG and the other 8-bit formats through stb (sRGB), Radiance HDR through
+// stb (linear), PFM by hand (linear). Writes go to a temporary file next to the target that is renamed
+// into place, so a failed write never leaves a partial output behind.
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
+
+#include "common/error.h"
+#include "image/image.h"
+#include "image/srgb.h"
+
+namespace vitrum {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lowerExtension(const fs::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+// A value fit for a file: non-finite becomes 0.
+float finiteOrZero(float v) { return std::isfinite(v) ? v : 0.0f; }
+
+std::string stbReason() {
+    const char* reason = stbi_failure_reason();
+    return reason ? reason : "unknown error";
+}
+
+// ---- PFM ----------------------------------------------------------------------------------------
+
+void putFloatLittleEndian(std::vector<char>& out, float v) {
+    auto bits = std::bit_cast<std::uint32_t>(v);
+    for (int i = 0; i < 4; ++i) out.push_back(char((bits >> (8 * i)) & 0xffu));
+}
+
+float getFloat(const unsigned char* p, bool littleEndian) {
+    std::uint32_t bits = 0;
+    for (int i = 0; i < 4; ++i) {
+        std::uint32_t byte = littleEndian ? p[i] : p[3 - i];
+        bits |= byte << (8 * i);
+    }
+    return std::bit_cast<float>(bits);
+}
+
+// Writes a little-endian PFM (scale -1), rows bottom to top. Returns false with errno set on failure.
+bool writePfm(const Image& image, const fs::path& file) {
+    std::vector<char> data;
+    std::string header = "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
+    data.reserve(header.size() + image.pixels.size() * 12);
+    data.insert(data.end(), header.begin(), header.end());
+    for (std::uint32_t row = image.height; row-- > 0;) {
+        for (std::uint32_t x = 0; x < image.width; ++x) {
+            const glm::vec3& p = image.at(x, row);
+            for (int c = 0; c < 3; ++c) putFloatLittleEndian(data, finiteOrZero(p[c]));
+        }
+    }
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    if (!out) return false;
+    out.write(data.data(), std::streamsize(data.size()));
+    out.close();
+    return bool(out);
+}
+
+// Reads the next whitespace-separated token of a PFM header; `pos` ends on the character after it.
+std::string pfmToken(const std::vector<unsigned char>& bytes, std::size_t& pos) {
+    while (pos < bytes.size() && std::isspace(bytes[pos])) ++pos;
+    std::string token;
+    while (pos < bytes.size() && !std::isspace(bytes[pos]) && token.size() < 64) token.push_back(char(bytes[pos++]));
+    return token;
+}
+
+Image readPfm(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw inputError(path, 0, std::string("cannot open image: ") + std::strerror(errno));
+    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw inputError(path, 0, "cannot read image");
+
+    auto corrupt = [&](const std::string& what) { return inputError(path, 0, "corrupt PFM file: " + what); };
+    if (bytes.size() < 2 || bytes[0] != 'P' || (bytes[1] != 'F' && bytes[1] != 'f')) {
+        throw corrupt("expected the magic 'PF' or 'Pf'");
+    }
+    const int channels = bytes[1] == 'F' ? 3 : 1;
+    std::size_t pos = 2;
+    std::string widthText = pfmToken(bytes, pos);
+    std::string heightText = pfmToken(bytes, pos);
+    std::string scaleText = pfmToken(bytes, pos);
+    long long width = 0;
+    long long height = 0;
+    double scale = 0.0;
+    try {
+        std::size_t used = 0;
+        width = std::stoll(widthText, &used);
+        if (used != widthText.size()) throw std::invalid_argument("width");
+        height = std::stoll(heightText, &used);
+        if (used != heightText.size()) throw std::invalid_argument("height");
+        scale = std::stod(scaleText, &used);
+        if (used != scaleText.size()) throw std::invalid_argument("scale");
+    } catch (const std::exception&) {
+        throw corrupt("expected 'width height scale' in the header, got '" + widthText + " " + heightText + " " +
+                      scaleText + "'");
+    }
+    if (width <= 0 || height <= 0 || width > (1 << 16) || height > (1 << 16)) {
+        throw corrupt("bad size " + widthText + "x" + heightText);
+    }
+    if (scale == 0.0 || !std::isfinite(scale)) throw corrupt("bad scale " + scaleText);
+    // Exactly one whitespace character separates the header from the raster.
+    if (pos >= bytes.size() || !std::isspace(bytes[pos])) throw corrupt("truncated header");
+    ++pos;
+    const bool littleEndian = scale < 0.0;
+    const std::size_t needed = std::size_t(width) * std::size_t(height) * std::size_t(channels) * 4;
+    if (bytes.size() - pos < needed) {
+        throw corrupt("expected " + std::to_string(needed) + " bytes of pixel data, got " +
+                      std::to_string(bytes.size() - pos));
+    }
+
+    Image image(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
+    bool nonFinite = false;
+    const unsigned char* p = bytes.data() + pos;
+    for (std::uint32_t row = image.height; row-- > 0;) {
+        for (std::uint32_t x = 0; x < image.width; ++x) {
+            glm::vec3 v;
+            for (int c = 0; c < channels; ++c, p += 4) v[c] = getFloat(p, littleEndian);
+            if (channels == 1) v = glm::vec3(v[0]);
+            for (int c = 0; c < 3; ++c) {
+                if (!std::isfinite(v[c])) {
+                    nonFinite = true;
+                    v[c] = 0.0f;
+                }
+            }
+            image.at(x, row) = v;
+        }
+    }
+    if (nonFinite) warn(path.string() + ": non-finite pixel values read as 0");
+    return image;
+}
+
+// ---- stb ----------------------------------------------------------------------------------------
+
+Image readLinearHdr(const fs::path& path) {
+    int w = 0;
+    int h = 0;
+    int n = 0;
+    float* data = stbi_loadf(path.string().c_str(), &w, &h, &n, 3);
+    if (!data) throw inputError(path, 0, "cannot read image: " + stbReason());
+    Image image(static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h));
+    bool nonFinite = false;
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            float v = data[i * 3 + c];
+            if (!std::isfinite(v)) {
+                nonFinite = true;
+                v = 0.0f;
+            }
+            image.pixels[i][c] = v;
+        }
+    }
+    stbi_image_free(data);
+    if (nonFinite) warn(path.string() + ": non-finite pixel values read as 0");
+    return image;
+}
+
+Image readSrgb(const fs::path& path) {
+    const std::string name = path.string();
+    int w = 0;
+    int h = 0;
+    int n = 0;
+    if (stbi_is_16_bit(name.c_str())) {
+        stbi_us* data = stbi_load_16(name.c_str(), &w, &h, &n, 3);
+        if (!data) throw inputError(path, 0, "cannot read image: " + stbReason());
+        Image image(static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h));
+        for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+            for (int c = 0; c < 3; ++c) image.pixels[i][c] = srgbToLinear(float(data[i * 3 + c]) / 65535.0f);
+        }
+        stbi_image_free(data);
+        return image;
+    }
+    stbi_uc* data = stbi_load(name.c_str(), &w, &h, &n, 3);
+    if (!data) throw inputError(path, 0, "cannot read image: " + stbReason());
+    float table[256];
+    for (int i = 0; i < 256; ++i) table[i] = srgbToLinear(float(i) / 255.0f);
+    Image image(static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h));
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) image.pixels[i][c] = table[data[i * 3 + c]];
+    }
+    stbi_image_free(data);
+    return image;
+}
+
+bool writePng(const Image& image, const fs::path& file) {
+    std::vector<unsigned char> data(image.pixels.size() * 3);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            float v = std::clamp(finiteOrZero(image.pixels[i][c]), 0.0f, 1.0f);
+            data[i * 3 + c] = (unsigned char)std::lround(linearToSrgb(v) * 255.0f);
+        }
+    }
+    return stbi_write_png(file.string().c_str(), int(image.width), int(image.height), 3, data.data(),
+                          int(image.width) * 3) != 0;
+}
+
+bool writeHdr(const Image& image, const fs::path& file) {
+    // RGBE cannot hold negative values: they become 0 like non-finite ones.
+    std::vector<float> data(image.pixels.size() * 3);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) data[i * 3 + c] = std::max(finiteOrZero(image.pixels[i][c]), 0.0f);
+    }
+    return stbi_write_hdr(file.string().c_str(), int(image.width), int(image.height), 3, data.data()) != 0;
+}
+
+}  // namespace
+
+void writeImage(const Image& image, const fs::path& path) {
+    const std::string ext = lowerExtension(path);
+    bool (*writer)(const Image&, const fs::path&) = nullptr;
+    if (ext == ".png") {
+        writer = writePng;
+    } else if (ext == ".pfm") {
+        writer = writePfm;
+    } else if (ext == ".hdr") {
+        writer = writeHdr;
+    } else {
+        throw inputError(path, 0, "unknown image format '" + ext + "' (use .png, .pfm or .hdr)");
+    }
+    if (image.width == 0 || image.height == 0 || image.pixels.size() != std::size_t(image.width) * image.height) {
+        throw inputError(path, 0, "cannot write an empty or malformed image (" + std::to_string(image.width) + "x" +
+                                      std::to_string(image.height) + ")");
+    }
+    if (image.width > (1u << 16) || image.height > (1u << 16)) {
+        throw inputError(path, 0, "image too large to write");
+    }
+    const fs::path parent = path.parent_path();
+    std::error_code ec;
+    if (!parent.empty() && !fs::is_directory(parent, ec)) {
+        throw inputError(path, 0, "cannot write image: directory " + parent.string() + " does not exist");
+    }
+
+    const fs::path temporary = fs::path(path.string() + ".tmp-" + std::to_string(::getpid()));
+    errno = 0;
+    const bool written = writer(image, temporary);
+    const int writeErrno = errno;
+    if (!written) {
+        fs::remove(temporary, ec);
+        std::string reason = writeErrno ? std::strerror(writeErrno) : "write failed";
+        throw inputError(path, 0, "cannot write image: " + reason);
+    }
+    fs::rename(temporary, path, ec);
+    if (ec) {
+        std::error_code ignored;
+        fs::remove(temporary, ignored);
+        throw inputError(path, 0, "cannot write image: " + ec.message());
+    }
+}
+
+Image readImage(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw inputError(path, 0, "image file not found");
+    if (fs::is_directory(path, ec)) throw inputError(path, 0, "expected an image file, got a directory");
+    const std::string ext = lowerExtension(path);
+    if (ext == ".exr") {
+        throw inputError(path, 0, "OpenEXR is not supported; convert the image to .hdr or .pfm");
+    }
+    if (ext == ".pfm") return readPfm(path);
+    // Decide by content between linear Radiance HDR and sRGB 8/16-bit images, so a misnamed
+    // .hdr is never gamma-converted by stb (and a .hdr that is not one is reported).
+    const bool isHdr = stbi_is_hdr(path.string().c_str()) != 0;
+    if (ext == ".hdr" && !isHdr) throw inputError(path, 0, "cannot read image: not a Radiance HDR file");
+    if (isHdr) return readLinearHdr(path);
+    return readSrgb(path);
+}
+
+}  // namespace vitrum

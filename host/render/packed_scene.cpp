@@ -1,0 +1,81 @@
+#include "render/packed_scene.h"
+
+#include <bit>
+#include <cmath>
+
+namespace vitrum {
+namespace {
+float bits(std::uint32_t value) { return std::bit_cast<float>(value); }
+}  // namespace
+
+PackedScene packScene(const Scene& scene, const Bvh& bvh) {
+    PackedScene packed;
+    packed.nodes = bvh.nodes;
+    packed.vertices = packTriangleVertices(bvh, scene.triangles);
+    packed.shading.reserve(bvh.triangleOrder.size());
+    for (std::uint32_t index : bvh.triangleOrder) {
+        const Triangle& t = scene.triangles[index];
+        packed.shading.push_back({
+            .n0 = glm::vec4(t.normal[0], 0.0f),
+            .n1 = glm::vec4(t.normal[1], 0.0f),
+            .n2 = glm::vec4(t.normal[2], 0.0f),
+            .uv01 = glm::vec4(t.uv[0], t.uv[1]),
+            .uv2 = glm::vec4(t.uv[2], 0.0f, 0.0f),
+        });
+    }
+    for (const Material& m : scene.materials) {
+        std::uint32_t texture = m.diffuseTexture >= 0 ? std::uint32_t(m.diffuseTexture) : gpu::kNoTexture;
+        packed.materials.push_back({
+            .ambient = glm::vec4(m.ambient, bits(std::uint32_t(m.model))),
+            .diffuse = glm::vec4(m.diffuse, bits(texture)),
+            .specular = glm::vec4(m.specular, m.shininess),
+            .attenuation = glm::vec4(m.attenuation, m.ior),
+        });
+    }
+    for (const PointLight& light : scene.lights)
+        packed.lights.push_back({glm::vec4(light.position, light.inverseSquare ? 1.0f : 0.0f), glm::vec4(light.colour, 0.0f)});
+    for (const Texture& texture : scene.textures) {
+        packed.textures.push_back({glm::uvec4(packed.texels.size(), texture.width, texture.height, 0)});
+        for (const glm::vec3& texel : texture.texels) packed.texels.emplace_back(texel, 0.0f);
+    }
+    constexpr std::uint32_t kUnset = 0xFFFFFFFFu;
+    packed.objectMaterials.assign(scene.objectNames.size(), kUnset);
+    for (const Triangle& t : scene.triangles) {
+        if (t.object >= packed.objectMaterials.size()) packed.objectMaterials.resize(t.object + 1, kUnset);
+        std::uint32_t& slot = packed.objectMaterials[t.object];
+        bool glass = scene.materials[t.material].model == MaterialModel::Glass;
+        if (slot == kUnset || (glass && scene.materials[slot].model != MaterialModel::Glass)) slot = t.material;
+    }
+    for (std::uint32_t& slot : packed.objectMaterials)
+        if (slot == kUnset) slot = 0;
+    return packed;
+}
+
+std::uint32_t sampleGridColumns(std::uint32_t n) {
+    std::uint32_t columns = 1;
+    for (std::uint32_t c = 1; c * c <= n; ++c)
+        if (n % c == 0) columns = c;
+    return columns;
+}
+
+gpu::RenderParams makeRenderParams(const Scene& scene) {
+    const Camera& camera = scene.camera;
+    glm::vec3 z = glm::normalize(camera.from - camera.at);
+    glm::vec3 x = glm::normalize(glm::cross(camera.up, z));
+    glm::vec3 y = glm::cross(z, x);
+    float focal = float(camera.height) / (2.0f * std::tan(glm::radians(camera.fovY) / 2.0f));
+    const RenderSettings& s = scene.settings;
+    gpu::RenderParams p{};
+    p.cameraFrom = glm::vec4(camera.from, focal);
+    p.cameraX = glm::vec4(x, 0.0f);
+    p.cameraY = glm::vec4(y, 0.0f);
+    p.cameraZ = glm::vec4(z, 0.0f);
+    p.background = glm::vec4(scene.background.colour, scene.airIor);
+    p.image = glm::uvec4(camera.width, camera.height, s.samplesPerPixel, s.maxDepth);
+    p.counts = glm::uvec4(scene.lights.size(), std::uint32_t(s.fresnel), scene.textures.size(), 0);
+    p.pass = glm::uvec4(1, sampleGridColumns(s.samplesPerPixel), 0, 0);
+    p.tuning = glm::vec4(s.minWeight, 0.0f, 0.0f, 0.0f);
+    return p;
+}
+
+}  // namespace vitrum

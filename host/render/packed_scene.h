@@ -1,0 +1,36 @@
+// The scene in the GPU's layout (shaders/shared/gpu_types.h): what the Vulkan backend uploads.
+// Triangles are in BVH order.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bvh/bvh.h"
+#include "scene/scene.h"
+#include "shared/gpu_types.h"
+
+namespace vitrum {
+
+struct PackedScene {
+    std::vector<gpu::BvhNode> nodes;
+    std::vector<gpu::TriangleVertices> vertices;
+    std::vector<gpu::TriangleShading> shading;
+    std::vector<gpu::GpuMaterial> materials;
+    std::vector<gpu::GpuLight> lights;
+    std::vector<gpu::TextureInfo> textures;
+    std::vector<glm::vec4> texels;
+    // The material of each object's medium: its first glass triangle's material (or its first
+    // triangle's when it has no glass).
+    std::vector<std::uint32_t> objectMaterials;
+};
+
+PackedScene packScene(const Scene& scene, const Bvh& bvh);
+
+// The camera and settings of `scene` as the kernel reads them; the host fills in tile and pass.
+gpu::RenderParams makeRenderParams(const Scene& scene);
+
+// Columns of the stratified sample grid for n samples: the largest divisor of n that is at most
+// sqrt(n) (so 16 -> 4 x 4, 8 -> 2 x 4, 7 -> 1 x 7).
+std::uint32_t sampleGridColumns(std::uint32_t n);
+
+}  // namespace vitrum

@@ -1,0 +1,299 @@
+#include "scene/json_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <glm/gtc/matrix_transform.hpp>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "common/error.h"
+#include "scene/json_lines.h"
+#include "scene/obj_loader.h"
+#include "scene/scene_loader.h"
+
+namespace vitrum {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct ObjectSpec {
+    fs::path obj;
+    ObjOptions options;
+};
+
+// nlohmann's what() reads "[json.exception.parse_error.101] parse error at line 3, column 5: syntax
+// error ..."; the file and line come first in our messages, so keep only the explanation.
+std::string jsonReason(std::string what) {
+    if (what.starts_with("[json.exception") && what.find("] ") != std::string::npos) what.erase(0, what.find("] ") + 2);
+    if (what.starts_with("parse error") && what.find(": ") != std::string::npos) what.erase(0, what.find(": ") + 2);
+    return what;
+}
+
+class JsonSceneReader {
+public:
+    JsonSceneReader(fs::path file, std::string text) : file_(std::move(file)), text_(std::move(text)) {}
+
+    Scene read() {
+        json root;
+        try {
+            root = json::parse(text_);
+        } catch (const json::parse_error& e) {
+            throw inputError(file_, lineOfOffset(text_, e.byte > 0 ? e.byte - 1 : 0),
+                             "invalid JSON: " + jsonReason(e.what()));
+        } catch (const json::exception& e) {
+            throw inputError(file_, 0, "invalid JSON: " + jsonReason(e.what()));
+        }
+        lines_ = jsonValueLines(text_);
+        if (!root.is_object()) fail("", "a scene must be a JSON object, got " + shown(root));
+        checkKeys(root, "", {"camera", "lights", "background", "air_ior", "objects", "render"});
+
+        Scene scene;
+        scene.source = file_;
+        if (const json* v = member(root, "render")) scene.settings = settings(*v, "/render");
+        if (const json* v = member(root, "background")) {
+            requireObject(*v, "/background");
+            checkKeys(*v, "/background", {"colour"});
+            if (const json* c = member(*v, "colour")) scene.background.colour = vector3(*c, "/background/colour", true);
+        }
+        if (const json* v = member(root, "air_ior"))
+            scene.airIor = float(number(
+                *v, "/air_ior", [](double x) { return x >= 1.0 && x <= 10.0; }, "a number from 1 to 10"));
+        const json* lightList = member(root, "lights");
+        if (lightList) scene.lights = lights(*lightList, "/lights");
+        const json* cameraValue = member(root, "camera");
+        if (cameraValue) scene.camera = camera(*cameraValue, "/camera");
+        const json* objectList = member(root, "objects");
+        if (!objectList) fail("", "a scene needs \"objects\": a non-empty list of OBJ files");
+        std::vector<ObjectSpec> specs = objects(*objectList, "/objects");
+
+        ObjLoader loader(scene);
+        for (const ObjectSpec& spec : specs) loader.load(spec.obj, spec.options);
+        if (!cameraValue) {
+            // The automatic camera comes with its own light unless the file lists lights.
+            std::vector<PointLight> listed = scene.lights;
+            frameAutomatically(scene);
+            if (lightList) scene.lights = listed;
+        }
+        return scene;
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& path, const std::string& message) const {
+        auto found = lines_.find(path);
+        throw inputError(file_, found == lines_.end() ? 0 : found->second, message);
+    }
+
+    // "fov_y" for "/camera/fov_y", "objects[1]" for "/objects/1" (quoted).
+    static std::string name(const std::string& path) {
+        const std::size_t slash = path.rfind('/');
+        const std::string last = path.substr(slash + 1);
+        std::string result = "\"";
+        if (slash != std::string::npos && slash > 0 && last.find_first_not_of("0123456789") == std::string::npos) {
+            const std::size_t parent = path.rfind('/', slash - 1) + 1;
+            result.append(path, parent, slash - parent).append("[").append(last).append("]");
+        } else {
+            result.append(last);
+        }
+        return result.append("\"");
+    }
+
+    static std::string shown(const json& v) {
+        std::string s = v.dump();
+        return s.size() > 60 ? s.substr(0, 57) + "..." : s;
+    }
+
+    [[noreturn]] void expected(const json& v, const std::string& path, const std::string& what) const {
+        fail(path, name(path) + " must be " + what + ", got " + shown(v));
+    }
+
+    static const json* member(const json& object, const char* key) {
+        auto found = object.find(key);
+        return found == object.end() ? nullptr : &*found;
+    }
+
+    void requireObject(const json& v, const std::string& path) const {
+        if (!v.is_object()) expected(v, path, "an object");
+    }
+
+    void checkKeys(const json& object, const std::string& path, std::initializer_list<const char*> known) const {
+        for (const auto& item : object.items()) {
+            if (std::find_if(known.begin(), known.end(), [&](const char* k) { return item.key() == k; }) != known.end())
+                continue;
+            auto found = lines_.find(path + "/" + item.key());
+            std::string where = file_.string();
+            if (found != lines_.end()) where.append(":").append(std::to_string(found->second));
+            warn(where + ": unknown key \"" + item.key() + "\" ignored");
+        }
+    }
+
+    double number(const json& v, const std::string& path, const std::function<bool(double)>& ok,
+                  const std::string& what) const {
+        if (!v.is_number() || !std::isfinite(v.get<double>()) || !ok(v.get<double>())) expected(v, path, what);
+        return v.get<double>();
+    }
+
+    std::uint32_t integer(const json& v, const std::string& path, int lo, int hi) const {
+        auto ok = [&](double x) { return x == std::floor(x) && x >= lo && x <= hi; };
+        return std::uint32_t(
+            number(v, path, ok, "an integer from " + std::to_string(lo) + " to " + std::to_string(hi)));
+    }
+
+    glm::vec3 vector3(const json& v, const std::string& path, bool nonNegative = false) const {
+        bool ok = v.is_array() && v.size() == 3;
+        for (std::size_t i = 0; ok && i < 3; ++i)
+            ok = v[i].is_number() && std::isfinite(v[i].get<double>()) && (!nonNegative || v[i].get<double>() >= 0.0);
+        if (!ok) expected(v, path, nonNegative ? "an array of 3 non-negative numbers" : "an array of 3 finite numbers");
+        return {v[0].get<float>(), v[1].get<float>(), v[2].get<float>()};
+    }
+
+    std::string string(const json& v, const std::string& path) const {
+        if (!v.is_string()) expected(v, path, "a string");
+        return v.get<std::string>();
+    }
+
+    template <typename T>
+    T choice(const json& v, const std::string& path, std::initializer_list<std::pair<const char*, T>> options) const {
+        std::string list;
+        for (const auto& [text, value] : options) {
+            if (v.is_string() && v.get<std::string>() == text) return value;
+            list += std::string(list.empty() ? "" : ", ") + "\"" + text + "\"";
+        }
+        expected(v, path, "one of " + list);
+    }
+
+    RenderSettings settings(const json& v, const std::string& path) const {
+        requireObject(v, path);
+        checkKeys(v, path, {"spp", "max_depth", "fresnel", "min_weight"});
+        RenderSettings s;
+        if (const json* x = member(v, "spp")) s.samplesPerPixel = integer(*x, path + "/spp", 1, 4096);
+        if (const json* x = member(v, "max_depth")) s.maxDepth = integer(*x, path + "/max_depth", 0, 64);
+        if (const json* x = member(v, "fresnel"))
+            s.fresnel = choice<FresnelModel>(*x, path + "/fresnel",
+                                             {{"schlick", FresnelModel::Schlick},
+                                              {"exact", FresnelModel::Exact},
+                                              {"schlick-exp2", FresnelModel::SchlickExp2}});
+        if (const json* x = member(v, "min_weight"))
+            s.minWeight = float(number(
+                *x, path + "/min_weight", [](double w) { return w >= 0.0 && w <= 1.0; }, "a number from 0 to 1"));
+        return s;
+    }
+
+    std::vector<PointLight> lights(const json& v, const std::string& path) const {
+        if (!v.is_array()) expected(v, path, "an array of lights");
+        std::vector<PointLight> result;
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            const std::string at = path + "/" + std::to_string(i);
+            requireObject(v[i], at);
+            checkKeys(v[i], at, {"position", "colour", "falloff"});
+            PointLight light;
+            const json* position = member(v[i], "position");
+            if (!position) fail(at, "a light needs a \"position\"");
+            light.position = vector3(*position, at + "/position");
+            if (const json* c = member(v[i], "colour")) light.colour = vector3(*c, at + "/colour", true);
+            if (const json* f = member(v[i], "falloff"))
+                light.inverseSquare = choice<bool>(*f, at + "/falloff", {{"none", false}, {"inverse_square", true}});
+            result.push_back(light);
+        }
+        return result;
+    }
+
+    Camera camera(const json& v, const std::string& path) const {
+        requireObject(v, path);
+        checkKeys(v, path, {"from", "at", "up", "fov_y", "width", "height"});
+        Camera c;
+        for (const char* key : {"from", "at"})
+            if (!member(v, key)) fail(path, std::string("the camera needs \"") + key + "\"");
+        c.from = vector3(v["from"], path + "/from");
+        c.at = vector3(v["at"], path + "/at");
+        if (const json* x = member(v, "up")) c.up = vector3(*x, path + "/up");
+        if (const json* x = member(v, "fov_y"))
+            c.fovY = float(number(
+                *x, path + "/fov_y", [](double f) { return f > 0.5 && f < 179.5; },
+                "a number of degrees between 1 and 179"));
+        if (const json* x = member(v, "width")) c.width = integer(*x, path + "/width", 1, 16384);
+        if (const json* x = member(v, "height")) c.height = integer(*x, path + "/height", 1, 16384);
+        const glm::vec3 view = c.from - c.at;
+        if (!(glm::length(view) > 0.0f)) fail(path + "/at", "\"at\" must differ from \"from\"");
+        const float upLength = glm::length(c.up);
+        if (!(upLength > 0.0f) || glm::length(glm::cross(c.up / upLength, glm::normalize(view))) < 1e-6f) {
+            const json* up = member(v, "up");
+            fail(up ? path + "/up" : path,
+                 "\"up\" must not be zero or parallel to from - at, got " + (up ? shown(*up) : "the default [0,0,1]"));
+        }
+        return c;
+    }
+
+    std::vector<ObjectSpec> objects(const json& v, const std::string& path) const {
+        if (!v.is_array() || v.empty()) expected(v, path, "a non-empty array of objects");
+        std::vector<ObjectSpec> specs;
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            const std::string at = path + "/" + std::to_string(i);
+            requireObject(v[i], at);
+            checkKeys(v[i], at, {"obj", "mtl", "transform"});
+            ObjectSpec spec;
+            const json* obj = member(v[i], "obj");
+            if (!obj) fail(at, "an object needs \"obj\": the path of an OBJ file");
+            spec.obj = existingFile(*obj, at + "/obj");
+            if (const json* mtl = member(v[i], "mtl")) spec.options.mtlOverride = existingFile(*mtl, at + "/mtl");
+            if (const json* t = member(v[i], "transform")) spec.options.transform = transform(*t, at + "/transform");
+            specs.push_back(std::move(spec));
+        }
+        return specs;
+    }
+
+    fs::path existingFile(const json& v, const std::string& path) const {
+        fs::path file = string(v, path);
+        if (file.is_relative()) file = file_.parent_path() / file;  // relative to the scene file
+        std::error_code ec;
+        if (!fs::is_regular_file(file, ec)) fail(path, name(path) + ": no such file \"" + file.string() + "\"");
+        return file;
+    }
+
+    // Scale, then rotation about x, y, z (in that order), then translation.
+    glm::mat4 transform(const json& v, const std::string& path) const {
+        requireObject(v, path);
+        checkKeys(v, path, {"scale", "rotate_deg", "translate"});
+        glm::vec3 scale(1.0f), rotation(0.0f), translation(0.0f);
+        if (const json* s = member(v, "scale")) {
+            const std::string at = path + "/scale";
+            if (!s->is_number() && !s->is_array())
+                expected(*s, at, "a non-zero number or an array of 3 non-zero numbers");
+            scale = s->is_number() ? glm::vec3(float(number(
+                                         *s, at, [](double) { return true; }, "")))
+                                   : vector3(*s, at);
+            if (scale.x == 0.0f || scale.y == 0.0f || scale.z == 0.0f)
+                expected(*s, at, "a non-zero number or an array of 3 non-zero numbers");
+        }
+        if (const json* r = member(v, "rotate_deg")) rotation = glm::radians(vector3(*r, path + "/rotate_deg"));
+        if (const json* t = member(v, "translate")) translation = vector3(*t, path + "/translate");
+        glm::mat4 m = glm::translate(glm::mat4(1.0f), translation);
+        m = glm::rotate(m, rotation.z, glm::vec3(0, 0, 1));
+        m = glm::rotate(m, rotation.y, glm::vec3(0, 1, 0));
+        m = glm::rotate(m, rotation.x, glm::vec3(1, 0, 0));
+        return glm::scale(m, scale);
+    }
+
+    fs::path file_;
+    std::string text_;
+    std::unordered_map<std::string, int> lines_;
+};
+
+}  // namespace
+
+Scene readJsonScene(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec) || !in) throw inputError(file, 0, "cannot open the scene file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return JsonSceneReader(file, std::move(text).str()).read();
+}
+
+}  // namespace vitrum

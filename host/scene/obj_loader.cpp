@@ -1,0 +1,300 @@
+#include "scene/obj_loader.h"
+
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "common/error.h"
+#include "image/image.h"
+#include "scene/mtl_material.h"
+#include "scene/mtl_parser.h"
+#include "scene/quote_input.h"
+
+namespace vitrum {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string readText(const fs::path& file) {
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) throw inputError(file, 0, "cannot open the OBJ file (no such file)");
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw inputError(file, 0, "cannot open the OBJ file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return std::move(text).str();
+}
+
+std::string_view firstWord(std::string_view line, std::size_t* end = nullptr) {
+    std::size_t begin = line.find_first_not_of(" \t");
+    if (begin == std::string_view::npos) return {};
+    std::size_t stop = std::min(line.find_first_of(" \t", begin), line.size());
+    if (end) *end = stop;
+    return line.substr(begin, stop - begin);
+}
+
+// What tinyobjloader does not tell: it reads "nan" or an unparsable coordinate as 0 and has no
+// line numbers for its own checks, so vertex lines are checked here first. Also notes the
+// mtllib and usemtl statements, and a line that can hold an inserted mtllib statement.
+struct ObjScan {
+    bool hasMtllib = false;
+    std::vector<std::string> usemtlNames;
+    std::size_t freeLineBegin = std::string::npos, freeLineEnd = 0;  // a blank or comment line before any usemtl
+};
+
+ObjScan scanObj(const fs::path& file, std::string_view text) {
+    ObjScan scan;
+    bool seenUsemtl = false;
+    int lineNumber = 0;
+    for (std::size_t begin = 0; begin < text.size();) {
+        std::size_t end = std::min(text.find('\n', begin), text.size());
+        std::string_view line = text.substr(begin, end - begin);
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        ++lineNumber;
+        std::size_t wordEnd = 0;
+        std::string_view word = firstWord(line, &wordEnd);
+        if (word.empty() || word.front() == '#') {
+            if (!seenUsemtl && scan.freeLineBegin == std::string::npos) {
+                scan.freeLineBegin = begin;
+                scan.freeLineEnd = begin + line.size();
+            }
+        } else if (word == "v") {
+            std::string_view rest = line.substr(wordEnd);
+            for (int i = 0; i < 3; ++i) {
+                std::size_t numberEnd = 0;
+                std::string_view number = firstWord(rest, &numberEnd);
+                if (!number.empty() && number.front() == '+') number.remove_prefix(1);
+                float value = 0.0f;
+                auto [ptr, ec] = std::from_chars(number.data(), number.data() + number.size(), value);
+                if (number.empty() || ptr != number.data() + number.size())
+                    throw inputError(file, lineNumber, "v expects three numbers, got " + quoteInput(line));
+                if (ec != std::errc() || !std::isfinite(value))
+                    throw inputError(file, lineNumber,
+                                     "vertex coordinate " + quoteInput(number) + " is not a finite number");
+                rest = rest.substr(numberEnd);
+            }
+        } else if (word == "mtllib") {
+            scan.hasMtllib = true;
+        } else if (word == "usemtl") {
+            seenUsemtl = true;
+            scan.usemtlNames.emplace_back(firstWord(line.substr(wordEnd)));
+        }
+        begin = end + 1;
+    }
+    return scan;
+}
+
+// Hands tinyobjloader the names of our own materials (parsed by mtl_parser with line numbers),
+// so that its material ids map back to scene materials.
+class LibraryReader : public tinyobj::MaterialReader {
+public:
+    using Lookup = std::function<const std::map<std::string, std::uint32_t>*(const std::string& mtllib)>;
+    explicit LibraryReader(Lookup lookup) : lookup_(std::move(lookup)) {}
+
+    bool operator()(const std::string& mtllib, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* names, std::string*, std::string*) override {
+        if (const auto* library = lookup_(mtllib)) {
+            for (const auto& [name, index] : *library) {
+                if (names->count(name)) continue;
+                (*names)[name] = int(materials->size());
+                materials->emplace_back().name = name;
+                sceneIndex.push_back(index);
+            }
+        }
+        return true;  // a missing library was reported by lookup_; tinyobj need not say it again
+    }
+
+    std::vector<std::uint32_t> sceneIndex;  // tinyobj material id -> index in Scene::materials
+
+private:
+    Lookup lookup_;
+};
+
+}  // namespace
+
+const ObjLoader::Library& ObjLoader::library(const fs::path& mtlFile) {
+    fs::path key = fs::weakly_canonical(mtlFile);
+    if (auto found = libraries_.find(key); found != libraries_.end()) return found->second;
+    Library library;
+    for (const MtlEntry& entry : parseMtlFile(mtlFile)) {
+        if (library.count(entry.name)) {
+            warn(mtlFile.string() + ":" + std::to_string(entry.line) + ": material \"" + entry.name +
+                 "\" defined again; the first definition is used");
+            continue;
+        }
+        Material material = materialFromMtl(entry, mtlFile);
+        if (entry.mapKd) {
+            std::string name = *entry.mapKd;
+            std::replace(name.begin(), name.end(), '\\', '/');  // Windows exporters write backslashes
+            material.diffuseTexture = texture(mtlFile.parent_path() / name, mtlFile, entry.mapKdLine);
+        }
+        library[entry.name] = std::uint32_t(scene_.materials.size());
+        scene_.materials.push_back(std::move(material));
+    }
+    return libraries_[key] = std::move(library);
+}
+
+int ObjLoader::texture(const fs::path& imageFile, const fs::path& mtlFile, int line) {
+    fs::path key = fs::weakly_canonical(imageFile);
+    if (auto found = textures_.find(key); found != textures_.end()) return found->second;
+    int index = -1;
+    try {
+        Image image = readImage(imageFile);
+        index = int(scene_.textures.size());
+        scene_.textures.push_back(Texture{imageFile, int(image.width), int(image.height), std::move(image.pixels)});
+    } catch (const InputError& e) {
+        warn(mtlFile.string() + ":" + std::to_string(line) + ": texture cannot be read (" + e.what() +
+             "); using Kd instead");
+    }
+    return textures_[key] = index;
+}
+
+std::uint32_t ObjLoader::defaultMaterialIndex() {
+    if (!defaultMaterial_) {
+        defaultMaterial_ = std::uint32_t(scene_.materials.size());
+        scene_.materials.push_back(defaultMaterial());
+    }
+    return *defaultMaterial_;
+}
+
+void ObjLoader::load(const fs::path& objFile, const ObjOptions& options) {
+    std::string text = readText(objFile);
+    ObjScan scan = scanObj(objFile, text);
+    if (options.mtlOverride && !scan.hasMtllib) {
+        // The override comes in through tinyobj's mtllib hook: give it an mtllib statement on a
+        // free line, so that tinyobj's line numbers stay those of the file.
+        if (scan.freeLineBegin != std::string::npos)
+            text.replace(scan.freeLineBegin, scan.freeLineEnd - scan.freeLineBegin, "mtllib override");
+        else
+            text.insert(0, "mtllib override\n");
+    }
+
+    std::set<std::string> knownNames;
+    LibraryReader reader([&](const std::string& mtllib) -> const Library* {
+        fs::path mtlFile = options.mtlOverride ? *options.mtlOverride : objFile.parent_path() / mtllib;
+        std::error_code ec;
+        if (!fs::is_regular_file(mtlFile, ec)) {
+            warn(objFile.string() + ": material library \"" + mtlFile.string() +
+                 "\" not found; its faces get the default material");
+            return nullptr;
+        }
+        const Library& found = library(mtlFile);
+        for (const auto& entry : found) knownNames.insert(entry.first);
+        return &found;
+    });
+
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> tinyMaterials;
+    std::string warnings, errors;
+    std::istringstream stream(text);
+    // No triangulation by tinyobj: it reads vertices of quads and polygons before any index check.
+    bool ok = tinyobj::LoadObj(&attrib, &shapes, &tinyMaterials, &warnings, &errors, &stream, &reader, false);
+    auto oneLine = [](std::string s) {
+        std::replace(s.begin(), s.end(), '\n', ' ');
+        return std::string(s.begin(), std::find_if(s.rbegin(), s.rend(), [](char c) { return c != ' '; }).base());
+    };
+    if (!ok || !errors.empty()) throw inputError(objFile, 0, oneLine(errors.empty() ? "unreadable OBJ" : errors));
+    std::istringstream warningLines(warnings);
+    for (std::string w; std::getline(warningLines, w);) {
+        w.erase(0, w.find_first_not_of(". "));  // tinyobj ends some warnings with "\n."
+        // Unknown material names are reported below with their names; index checks are ours.
+        if (!w.empty() && w.find("not found in .mtl") == std::string::npos &&
+            w.find("out of bounds") == std::string::npos)
+            warn(objFile.string() + ": " + w);
+    }
+    for (const std::string& name : scan.usemtlNames) {
+        if (!knownNames.count(name))
+            warn(objFile.string() + ": material " + quoteInput(name) +
+                 " is not defined; its faces get the default material");
+    }
+
+    const glm::mat4& m = options.transform;
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
+    const bool mirrored = glm::determinant(glm::mat3(m)) < 0.0f;  // keep the winding outward-facing
+    const int vertexCount = int(attrib.vertices.size() / 3);
+    const int normalCount = int(attrib.normals.size() / 3);
+    const int uvCount = int(attrib.texcoords.size() / 2);
+    const std::size_t firstTriangle = scene_.triangles.size();
+
+    for (std::size_t s = 0; s < shapes.size(); ++s) {
+        const tinyobj::mesh_t& mesh = shapes[s].mesh;
+        std::string shapeName = shapes[s].name;
+        shapeName.erase(shapeName.find_last_not_of(" \t\r") + 1);
+        if (shapeName.empty()) shapeName = "shape" + std::to_string(s);
+        const auto objectIndex = std::uint32_t(scene_.objectNames.size());
+        bool anyTriangle = false;
+        std::size_t offset = 0;
+        for (std::size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
+            const std::size_t corners = mesh.num_face_vertices[f];
+            for (std::size_t k = 0; k < corners; ++k) {
+                const tinyobj::index_t& idx = mesh.indices[offset + k];
+                auto check = [&](int index, int count, bool optional, const char* what) {
+                    if ((optional && index == -1) || (index >= 0 && index < count)) return;
+                    std::string problem = index < 0 ? "an index before the first of its " + std::string(what)
+                                                    : "index " + std::to_string(index + 1) + ", but the file has " +
+                                                          std::to_string(count) + " " + what;
+                    throw inputError(objFile, 0, "a face of " + quoteInput(shapeName) + " uses " + problem);
+                };
+                check(idx.vertex_index, vertexCount, false, "vertices");
+                check(idx.normal_index, normalCount, true, "normals");
+                check(idx.texcoord_index, uvCount, true, "texture coordinates");
+            }
+            const int tinyMaterial = mesh.material_ids[f];
+            const std::uint32_t material = tinyMaterial >= 0 && std::size_t(tinyMaterial) < reader.sceneIndex.size()
+                                               ? reader.sceneIndex[std::size_t(tinyMaterial)]
+                                               : defaultMaterialIndex();
+            // Fan triangulation: exact for triangles and convex polygons, which is what exporters write.
+            for (std::size_t k = 1; k + 1 < corners; ++k) {
+                std::size_t c[3] = {offset, offset + k, offset + k + 1};
+                if (mirrored) std::swap(c[1], c[2]);
+                Triangle t;
+                t.material = material;
+                t.object = objectIndex;
+                for (int i = 0; i < 3; ++i) {
+                    const tinyobj::index_t& idx = mesh.indices[c[i]];
+                    const tinyobj::real_t* p = &attrib.vertices[3 * std::size_t(idx.vertex_index)];
+                    t.position[i] = glm::vec3(m * glm::vec4(float(p[0]), float(p[1]), float(p[2]), 1.0f));
+                    if (!std::isfinite(t.position[i].x) || !std::isfinite(t.position[i].y) ||
+                        !std::isfinite(t.position[i].z))
+                        throw inputError(
+                            objFile, 0,
+                            "vertex " + std::to_string(idx.vertex_index + 1) + " is not finite after the transform");
+                    const tinyobj::real_t* uv =
+                        idx.texcoord_index >= 0 ? &attrib.texcoords[2 * std::size_t(idx.texcoord_index)] : nullptr;
+                    t.uv[i] = uv ? glm::vec2(float(uv[0]), float(uv[1])) : glm::vec2(0.0f);
+                }
+                glm::vec3 geometric = glm::cross(t.position[1] - t.position[0], t.position[2] - t.position[0]);
+                float length = glm::length(geometric);
+                // A zero-area triangle is kept (it is never hit); it still gets a valid unit normal.
+                geometric = length > 0.0f && std::isfinite(length) ? geometric / length : glm::vec3(0.0f, 0.0f, 1.0f);
+                for (int i = 0; i < 3; ++i) {
+                    const int ni = mesh.indices[c[i]].normal_index;
+                    glm::vec3 n(0.0f);
+                    if (ni >= 0) {
+                        const tinyobj::real_t* v = &attrib.normals[3 * std::size_t(ni)];
+                        n = normalMatrix * glm::vec3(float(v[0]), float(v[1]), float(v[2]));
+                    }
+                    float nl = glm::length(n);
+                    t.normal[i] = nl > 0.0f && std::isfinite(nl) ? n / nl : geometric;
+                }
+                scene_.triangles.push_back(t);
+                anyTriangle = true;
+            }
+            offset += corners;
+        }
+        if (anyTriangle) scene_.objectNames.push_back(objFile.filename().string() + "/" + shapeName);
+    }
+    if (scene_.triangles.size() == firstTriangle) throw inputError(objFile, 0, "contains no triangles");
+}
+
+}  // namespace vitrum

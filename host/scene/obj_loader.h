@@ -1,0 +1,42 @@
+// Appending Wavefront OBJ files to a Scene: triangles in world space (after an optional
+// transform), one object per OBJ shape ("o"/"g"), materials from the MTL files with textures.
+// Material libraries and textures are loaded once per path however many OBJ files use them.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <glm/glm.hpp>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace vitrum {
+
+struct ObjOptions {
+    std::optional<std::filesystem::path> mtlOverride;  // replaces the OBJ's own mtllib
+    glm::mat4 transform{1.0f};                         // object to world; must be invertible
+};
+
+class ObjLoader {
+public:
+    explicit ObjLoader(Scene& scene) : scene_(scene) {}
+
+    // Throws InputError naming the file: missing, unparsable, non-finite coordinates, face indices
+    // out of range, no triangles. Missing MTL files and textures only warn.
+    void load(const std::filesystem::path& objFile, const ObjOptions& options = {});
+
+private:
+    using Library = std::map<std::string, std::uint32_t>;  // material name -> index in scene_.materials
+    const Library& library(const std::filesystem::path& mtlFile);
+    int texture(const std::filesystem::path& imageFile, const std::filesystem::path& mtlFile, int line);
+    std::uint32_t defaultMaterialIndex();
+
+    Scene& scene_;
+    std::map<std::filesystem::path, Library> libraries_;
+    std::map<std::filesystem::path, int> textures_;  // -1: could not be read (warned once)
+    std::optional<std::uint32_t> defaultMaterial_;
+};
+
+}  // namespace vitrum

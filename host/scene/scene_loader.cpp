@@ -1,0 +1,56 @@
+#include "scene/scene_loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "common/error.h"
+#include "scene/json_scene.h"
+#include "scene/obj_loader.h"
+
+namespace vitrum {
+
+Scene loadScene(const std::filesystem::path& path) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    if (extension == ".json") return readJsonScene(path);
+    if (extension == ".obj") {
+        Scene scene;
+        scene.source = path;
+        ObjLoader(scene).load(path);
+        frameAutomatically(scene);
+        return scene;
+    }
+    throw inputError(path, 0, "unknown scene format \"" + extension + "\": expected a .json scene or an .obj file");
+}
+
+// A z-up three-quarter view from the -y side, slightly above, that fits the bounding sphere of
+// the geometry into the vertical field of view with a 10 % margin; one white light above the eye.
+void frameAutomatically(Scene& scene) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const Triangle& t : scene.triangles) {
+        for (const glm::vec3& p : t.position) {
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+    }
+    const glm::vec3 centre = scene.triangles.empty() ? glm::vec3(0.0f) : (lo + hi) * 0.5f;
+    float radius = scene.triangles.empty() ? 0.0f : glm::length(hi - lo) * 0.5f;
+    if (!(radius > 0.0f) || !std::isfinite(radius)) radius = 1.0f;  // nothing, or a single point
+
+    Camera& camera = scene.camera;
+    camera = Camera{};
+    camera.up = glm::vec3(0.0f, 0.0f, 1.0f);
+    camera.fovY = 45.0f;
+    camera.width = 640;
+    camera.height = 480;
+    const float distance = 1.1f * radius / std::sin(glm::radians(camera.fovY) * 0.5f);
+    camera.at = centre;
+    camera.from = centre + glm::normalize(glm::vec3(1.0f, -2.0f, 1.0f)) * distance;
+    scene.lights = {PointLight{camera.from + camera.up * radius, glm::vec3(1.0f), false}};
+}
+
+}  // namespace vitrum

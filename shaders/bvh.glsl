@@ -1,0 +1,96 @@
+// Ray/triangle and ray/box tests and a resumable, one-node-per-step BVH traversal over the
+// flattened nodes of shared/gpu_types.h. The traversal's state lives in the global `st` (see
+// trace.comp) so that a dispatch can stop after any step and the next one resume it.
+#ifndef VITRUM_BVH_GLSL
+#define VITRUM_BVH_GLSL
+
+const uint kNoTriangle = 0xFFFFFFFFu;
+
+// Moller-Trumbore, "Fast, Minimum Storage Ray/Triangle Intersection" (1997); the same
+// arithmetic as host/bvh/bvh_traversal.cpp. Returns (t, u, v) with t = -1 on a miss; both sides
+// of the triangle are hit.
+vec3 intersectTriangle(TriangleVertices tri, vec3 origin, vec3 direction) {
+    vec3 e1 = tri.v1.xyz - tri.v0.xyz;
+    vec3 e2 = tri.v2.xyz - tri.v0.xyz;
+    vec3 p = cross(direction, e2);
+    float det = dot(e1, p);
+    if (det == 0.0) return vec3(-1.0);
+    float invDet = 1.0 / det;
+    vec3 s = origin - tri.v0.xyz;
+    float u = dot(s, p) * invDet;
+    if (u < 0.0 || u > 1.0) return vec3(-1.0);
+    vec3 q = cross(s, e1);
+    float v = dot(direction, q) * invDet;
+    if (v < 0.0 || u + v > 1.0) return vec3(-1.0);
+    return vec3(dot(e2, q) * invDet, u, v);
+}
+
+// Slab test against (0, tMax) (Kay and Kajiya), as host/bvh/bvh_traversal.cpp does it: an axis
+// whose slab distance is NaN (0 * inf: the ray runs in the plane of a face) does not constrain
+// the segment, and the exit distance is widened by 1 + 2 gamma(3) so that rounding never culls a
+// triangle lying on a face of the box (pbrt-v4, "Robust Ray-Bounds Intersections").
+bool hitsBox(vec3 boxMin, vec3 boxMax, vec3 origin, vec3 inverseDirection, float tMax) {
+    const float kFarScale = 1.00000036;
+    vec3 t0 = (boxMin - origin) * inverseDirection;
+    vec3 t1 = (boxMax - origin) * inverseDirection;
+    bvec3 valid = bvec3(vec3(equal(t0, t0)) * vec3(equal(t1, t1)));
+    vec3 tNear = mix(vec3(-3.0e38), min(t0, t1), valid);
+    vec3 tFar = mix(vec3(3.0e38), max(t0, t1) * kFarScale, valid);
+    float enter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
+    float leave = min(min(tFar.x, tFar.y), min(tFar.z, tMax));
+    return enter <= leave;
+}
+
+// Starts a traversal of the ray origin + t direction, 0 < t < tMax.
+void beginTraversal(vec3 origin, vec3 direction, float tMax) {
+    st.traceOrigin = vec4(origin, 0.0);
+    st.traceDirection = vec4(direction, tMax);
+    st.stack[0] = 0u;
+    st.control.w = 1u;
+    st.traversal.xyz = uvec3(0u, 0u, kNoTriangle);
+}
+
+// One step of the traversal: one triangle test or one node visit. Returns true when it is over:
+// the closest hit (or, with anyHit, some hit) is in st.traversal.z, its t in st.traceDirection.w
+// and its barycentrics in st.hitUv.zw.
+bool traversalStep(bool anyHit) {
+    vec3 origin = st.traceOrigin.xyz;
+    vec3 direction = st.traceDirection.xyz;
+    if (st.traversal.x < st.traversal.y) {
+        uint triangle = st.traversal.x;
+        st.traversal.x += 1u;
+        vec3 hit = intersectTriangle(vertices[triangle], origin, direction);
+        if (hit.x > 0.0 && hit.x < st.traceDirection.w) {
+            st.traceDirection.w = hit.x;
+            st.traversal.z = triangle;
+            st.hitUv.zw = hit.yz;
+            if (anyHit) return true;
+        }
+        return false;
+    }
+    if (st.control.w == 0u) return true;
+    st.control.w -= 1u;
+    uint nodeIndex = st.stack[st.control.w];
+    BvhNode node = nodes[nodeIndex];
+    gNodeVisits += 1u;
+    if (!hitsBox(node.boundsMin.xyz, node.boundsMax.xyz, origin, 1.0 / direction, st.traceDirection.w)) return false;
+    uint meta = floatBitsToUint(node.boundsMax.w);
+    uint link = floatBitsToUint(node.boundsMin.w);
+    if ((meta & kInteriorNodeFlag) == 0u) {
+        st.traversal.x = link;
+        st.traversal.y = link + meta;
+        return false;
+    }
+    if (st.control.w + 2u > kTraversalStackSize) {
+        gTraversalOverflows += 1u;
+        return false;
+    }
+    // Visit the child on the ray's near side of the split first: push it last.
+    bool negative = direction[meta & 3u] < 0.0;
+    st.stack[st.control.w] = negative ? nodeIndex + 1u : link;
+    st.stack[st.control.w + 1u] = negative ? link : nodeIndex + 1u;
+    st.control.w += 2u;
+    return false;
+}
+
+#endif

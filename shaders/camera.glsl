@@ -1,0 +1,25 @@
+// Primary rays: the pinhole camera and the stratified jitter of docs/render-model.md, written to
+// give the same sample positions as host/render/sampling.h, bit for bit.
+#ifndef VITRUM_CAMERA_GLSL
+#define VITRUM_CAMERA_GLSL
+
+// Position of sample k of n inside its pixel, in [0, 1)^2: the pixel centre for one sample,
+// otherwise a jittered point in cell (k % columns, k / columns) of a columns x (n / columns) grid.
+vec2 sampleOffsetInPixel(uint pixelIndex, uint k, uint n, uint columns) {
+    if (n == 1u) return vec2(0.5);
+    uint seed = pixelIndex * 2654435761u;
+    float jx = hashToUnit(pcgHash(seed ^ pcgHash(2u * k)));
+    float jy = hashToUnit(pcgHash(seed ^ pcgHash(2u * k + 1u)));
+    uint rows = n / columns;
+    return vec2((float(k % columns) + jx) / float(columns), (float(k / columns) + jy) / float(rows));
+}
+
+vec3 cameraRayDirection(vec2 imagePosition) {
+    float halfWidth = 0.5 * float(params.image.x);
+    float halfHeight = 0.5 * float(params.image.y);
+    vec3 d = (imagePosition.x - halfWidth) * params.cameraX.xyz + (halfHeight - imagePosition.y) * params.cameraY.xyz -
+             params.cameraFrom.w * params.cameraZ.xyz;
+    return normalize(d);
+}
+
+#endif

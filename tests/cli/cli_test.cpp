@@ -1,0 +1,142 @@
+// The `vitrum` command as a user runs it: exit codes, messages that name the file, no output
+// left behind on failure, and the two backends agreeing through the command line.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "image/image.h"
+#include "image/image_diff.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandRun {
+    int exitCode;
+    std::string output;  // stdout and stderr together
+};
+
+CommandRun vitrum(const std::string& arguments) {
+    std::string command = std::string(VITRUM_BINARY) + " " + arguments + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return {-1, "popen failed"};
+    std::string output;
+    std::array<char, 4096> buffer;
+    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
+    int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("vitrum-cli-" + std::to_string(::getpid()) + "-" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::string write(const std::string& name, const std::string& contents) const {
+        std::ofstream(dir_ / name) << contents;
+        return path(name);
+    }
+    fs::path dir_;
+};
+
+const std::string kGeosphere = std::string(VITRUM_SHARED_DIR) + "/scenes/course/geosphere/geosphere.obj";
+
+TEST_F(Cli, GeosphereRendersTheSameOnBothBackends) {
+    std::string common = kGeosphere + " --camera-from 3,-3,1 --camera-at 0,0,0 --light 4,-6,5 --width 96 --height 72";
+    CommandRun gpu = vitrum("render " + common + " --backend vulkan -o " + path("gpu.pfm") + " --stats " + path("gpu.json"));
+    ASSERT_EQ(gpu.exitCode, 0) << gpu.output;
+    CommandRun cpu = vitrum("render " + common + " --backend cpu -o " + path("cpu.pfm"));
+    ASSERT_EQ(cpu.exitCode, 0) << cpu.output;
+    vitrum::ImageDiff d = vitrum::diffImages(vitrum::readImage(path("gpu.pfm")), vitrum::readImage(path("cpu.pfm")));
+    EXPECT_LE(d.shareOver005, 0.005);  // thresholds justified in tests/gpu/gpu_test_support.h
+    EXPECT_LE(d.meanAbsError, 2e-3);
+
+    nlohmann::json stats = nlohmann::json::parse(std::ifstream(path("gpu.json")));
+    EXPECT_EQ(stats["backend"], "vulkan");
+    EXPECT_EQ(stats["rays"]["primary"], 96 * 72);
+    EXPECT_GT(stats["rays"]["shadow"].get<int>(), 0);
+    EXPECT_TRUE(stats["seconds"].contains("render"));
+    EXPECT_NE(gpu.output.find("Mrays/s"), std::string::npos);
+
+    CommandRun diff = vitrum("diff " + path("gpu.pfm") + " " + path("cpu.pfm") + " --heatmap " + path("heat.png"));
+    EXPECT_EQ(diff.exitCode, 0) << diff.output;
+    EXPECT_NE(diff.output.find("psnr"), std::string::npos);
+    EXPECT_TRUE(fs::exists(path("heat.png")));
+}
+
+TEST_F(Cli, MissingSceneIsAnErrorNamingTheFile) {
+    CommandRun r = vitrum("render " + path("nope.json") + " -o " + path("out.png"));
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("nope.json"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(path("out.png")));
+}
+
+TEST_F(Cli, MalformedJsonNamesFileAndLine) {
+    std::string scene = write("bad.json", "{\n  \"camera\": {\n    \"fov_y\": ,\n  }\n}\n");
+    CommandRun r = vitrum("render " + scene + " -o " + path("out.png"));
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("bad.json:3"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(path("out.png")));
+}
+
+TEST_F(Cli, AbsurdImageSizesAreRefused) {
+    for (std::string size : {"--width 0", "--height 0", "--width 1000000", "--spp 0", "--max-depth -1", "--fov 180"}) {
+        CommandRun r = vitrum("render " + kGeosphere + " " + size + " -o " + path("out.png"));
+        EXPECT_EQ(r.exitCode, 1) << size << ": " << r.output;
+        EXPECT_FALSE(fs::exists(path("out.png"))) << size;
+    }
+}
+
+TEST_F(Cli, UnwritableOutputLeavesNothingBehind) {
+    CommandRun r = vitrum("render " + kGeosphere + " --width 8 --height 8 -o " + path("missing-dir/out.png"));
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("out.png"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+TEST_F(Cli, UnknownOptionsAndOutputFormatsAreRefused) {
+    EXPECT_EQ(vitrum("render " + kGeosphere + " --frobnicate -o " + path("a.png")).exitCode, 1);
+    EXPECT_EQ(vitrum("render " + kGeosphere + " -o " + path("a.jpg")).exitCode, 1);
+    EXPECT_EQ(vitrum("frobnicate").exitCode, 1);
+    EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+TEST_F(Cli, NanCoordinatesAreAnError) {
+    std::string obj = write("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n");
+    CommandRun r = vitrum("render " + obj + " -o " + path("out.png"));
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("nan.obj"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, EmptyMeshIsAnError) {
+    std::string obj = write("empty.obj", "# nothing here\n");
+    CommandRun r = vitrum("render " + obj + " -o " + path("out.png"));
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("empty.obj"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, HelpIsThereForEveryCommand) {
+    for (std::string command : {"--help", "render --help", "info --help", "diff --help", "devices --help"}) {
+        CommandRun r = vitrum(command);
+        EXPECT_EQ(r.exitCode, 0) << command;
+        EXPECT_NE(r.output.find("usage"), std::string::npos) << command;
+    }
+}
+
+TEST_F(Cli, InfoReportsTrianglesAndBvh) {
+    CommandRun r = vitrum("info " + kGeosphere);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("triangles: 1280"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("SAH cost"), std::string::npos) << r.output;
+}
+
+}  // namespace

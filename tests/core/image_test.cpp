@@ -1,0 +1,382 @@
+// Image files (PNG, PFM, HDR), their failure modes, the image comparison and the sRGB curve.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+#include "image/image.h"
+#include "image/image_diff.h"
+#include "image/srgb.h"
+
+namespace vitrum {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ImageIoTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("vitrum_image_test_" + std::to_string(::getpid()) + "_" + std::string(info->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override {
+        std::error_code ec;
+        fs::remove_all(dir_, ec);
+    }
+    // Number of entries in the test directory (temporary files included).
+    int entryCount() const {
+        int n = 0;
+        for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir_)) ++n;
+        return n;
+    }
+    void writeBytes(const fs::path& path, const std::string& bytes) const {
+        std::ofstream out(path, std::ios::binary);
+        out.write(bytes.data(), std::streamsize(bytes.size()));
+    }
+    fs::path dir_;
+};
+
+// A gradient over the whole [0, 1] range, different in each channel, plus a few out-of-range values.
+Image gradient(std::uint32_t w, std::uint32_t h) {
+    Image image(w, h);
+    for (std::uint32_t y = 0; y < h; ++y) {
+        for (std::uint32_t x = 0; x < w; ++x) {
+            const float t = float(x) / float(w - 1);
+            const float s = float(y) / float(h - 1);
+            image.at(x, y) = glm::vec3(t, 1.0f - t, t * s);
+        }
+    }
+    return image;
+}
+
+std::string exceptionMessage(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "<no InputError>";
+}
+
+TEST_F(ImageIoTest, PngRoundTripWithinQuantisation) {
+    Image image = gradient(256, 5);
+    image.at(0, 0) = glm::vec3(-0.5f, 2.0f, std::numeric_limits<float>::quiet_NaN());  // clamped, NaN -> 0
+    const fs::path path = dir_ / "gradient.png";
+    writeImage(image, path);
+    ASSERT_TRUE(fs::exists(path));
+    EXPECT_EQ(entryCount(), 1);  // no temporary left behind
+    const Image read = readImage(path);
+    ASSERT_EQ(read.width, image.width);
+    ASSERT_EQ(read.height, image.height);
+    EXPECT_EQ(read.at(0, 0), glm::vec3(0.0f, 1.0f, 0.0f));
+    for (std::size_t i = 1; i < image.pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            const float v = image.pixels[i][c];
+            const float got = read.pixels[i][c];
+            // Exactly the 8-bit code nearest to the sRGB value, decoded ...
+            const float expected = srgbToLinear(std::round(linearToSrgb(v) * 255.0f) / 255.0f);
+            EXPECT_NEAR(got, expected, 1e-6f) << "pixel " << i << " channel " << c;
+            // ... which is within half an 8-bit step of the value in sRGB space.
+            EXPECT_LE(std::fabs(linearToSrgb(got) - linearToSrgb(v)), 0.5f / 255.0f + 1e-5f);
+        }
+    }
+}
+
+TEST_F(ImageIoTest, PfmRoundTripIsExact) {
+    Image image(7, 3);
+    std::mt19937 rng(42);
+    std::uniform_real_distribution<float> dist(-3.0f, 1000.0f);
+    for (auto& p : image.pixels) p = glm::vec3(dist(rng), dist(rng), dist(rng));
+    image.at(1, 1) = glm::vec3(1e-30f, 0.0f, 65504.0f);
+    const fs::path path = dir_ / "exact.PFM";  // extension is case-insensitive
+    writeImage(image, path);
+    const Image read = readImage(path);
+    ASSERT_EQ(read.width, 7u);
+    ASSERT_EQ(read.height, 3u);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) EXPECT_EQ(read.pixels[i], image.pixels[i]) << i;
+}
+
+TEST_F(ImageIoTest, PfmWrittenLittleEndianBottomUp) {
+    Image image(1, 2);
+    image.at(0, 0) = glm::vec3(1.0f, 2.0f, 3.0f);  // top row
+    image.at(0, 1) = glm::vec3(4.0f, 5.0f, 6.0f);  // bottom row: first in the file
+    const fs::path path = dir_ / "layout.pfm";
+    writeImage(image, path);
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string header = "PF\n1 2\n-1.0\n";
+    ASSERT_EQ(bytes.size(), header.size() + 24);
+    EXPECT_EQ(bytes.substr(0, header.size()), header);
+    float first = 0.0f;
+    std::memcpy(&first, bytes.data() + header.size(), 4);  // the test machine is little endian
+    EXPECT_EQ(first, 4.0f);
+}
+
+TEST_F(ImageIoTest, PfmReadsBigEndianAndGrey) {
+    // 2x1 big-endian greyscale: values 0.5 and 2.0.
+    std::string bytes = "Pf\n2 1\n1.0\n";
+    const unsigned char data[] = {0x3f, 0x00, 0x00, 0x00, 0x40, 0x00, 0x00, 0x00};
+    bytes.append(reinterpret_cast<const char*>(data), sizeof(data));
+    const fs::path path = dir_ / "grey.pfm";
+    writeBytes(path, bytes);
+    const Image read = readImage(path);
+    ASSERT_EQ(read.width, 2u);
+    ASSERT_EQ(read.height, 1u);
+    EXPECT_EQ(read.at(0, 0), glm::vec3(0.5f));
+    EXPECT_EQ(read.at(1, 0), glm::vec3(2.0f));
+}
+
+TEST_F(ImageIoTest, PfmTruncatedIsInputError) {
+    const fs::path path = dir_ / "short.pfm";
+    writeBytes(path, "PF\n4 4\n-1.0\nabc");
+    const std::string message = exceptionMessage([&] { readImage(path); });
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+    EXPECT_NE(message.find("PFM"), std::string::npos) << message;
+}
+
+TEST_F(ImageIoTest, HdrRoundTripWithinRgbePrecision) {
+    Image image(16, 4);
+    for (std::uint32_t y = 0; y < 4; ++y) {
+        for (std::uint32_t x = 0; x < 16; ++x) {
+            image.at(x, y) = glm::vec3(0.01f + float(x) * 0.7f, float(y) * 3.1f + 0.002f, 0.5f + float(x * y));
+        }
+    }
+    const fs::path path = dir_ / "round.hdr";
+    writeImage(image, path);
+    const Image read = readImage(path);
+    ASSERT_EQ(read.width, image.width);
+    ASSERT_EQ(read.height, image.height);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        const glm::vec3& v = image.pixels[i];
+        const float largest = std::max({v.r, v.g, v.b});
+        for (int c = 0; c < 3; ++c) {
+            // RGBE shares one exponent: each channel is exact to one mantissa step of the largest,
+            // which is at most 2 / 256 of it (the mantissa of the largest lies in [128, 256)).
+            EXPECT_NEAR(read.pixels[i][c], v[c], largest / 128.0f) << "pixel " << i << " channel " << c;
+        }
+        EXPECT_NEAR(std::max({read.pixels[i].r, read.pixels[i].g, read.pixels[i].b}), largest, largest / 128.0f);
+    }
+}
+
+TEST_F(ImageIoTest, CourseImagesLoad) {
+    const fs::path images = fs::path(VITRUM_SHARED_DIR) / "scenes/course/images";
+    const Image png = readImage(images / "test.png");
+    EXPECT_EQ(png.width, 64u);
+    EXPECT_EQ(png.height, 32u);
+    for (const auto& p : png.pixels) {
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_GE(p[c], 0.0f);
+            EXPECT_LE(p[c], 1.0f);
+        }
+    }
+    const Image hdr = readImage(images / "test.hdr");
+    EXPECT_GT(hdr.width, 0u);
+    EXPECT_GT(hdr.height, 0u);
+    EXPECT_LE(hdr.width, 8192u);
+    EXPECT_LE(hdr.height, 8192u);
+    float largest = 0.0f;
+    for (const auto& p : hdr.pixels) {
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_TRUE(std::isfinite(p[c]));
+            EXPECT_GE(p[c], 0.0f);
+            largest = std::max(largest, p[c]);
+        }
+    }
+    EXPECT_GT(largest, 0.0f);
+}
+
+TEST_F(ImageIoTest, ExrIsNotSupported) {
+    const fs::path path = fs::path(VITRUM_SHARED_DIR) / "scenes/course/images/test.exr";
+    ASSERT_TRUE(fs::exists(path));
+    const std::string message = exceptionMessage([&] { readImage(path); });
+    EXPECT_NE(message.find("OpenEXR is not supported"), std::string::npos) << message;
+    EXPECT_NE(message.find("test.exr"), std::string::npos) << message;
+}
+
+TEST_F(ImageIoTest, CorruptFileIsInputError) {
+    std::mt19937 rng(7);
+    std::string bytes;
+    for (int i = 0; i < 1000; ++i) bytes.push_back(char(rng() & 0xff));
+    const fs::path path = dir_ / "noise.png";
+    writeBytes(path, bytes);
+    const std::string message = exceptionMessage([&] { readImage(path); });
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+
+    // A PNG signature followed by garbage, and an .hdr that is no Radiance file.
+    writeBytes(path, std::string("\x89PNG\r\n\x1a\n", 8) + bytes);
+    EXPECT_THROW(readImage(path), InputError);
+    const fs::path hdr = dir_ / "noise.hdr";
+    writeBytes(hdr, bytes);
+    EXPECT_THROW(readImage(hdr), InputError);
+    const fs::path empty = dir_ / "empty.png";
+    writeBytes(empty, "");
+    EXPECT_THROW(readImage(empty), InputError);
+}
+
+TEST_F(ImageIoTest, MissingFileNamesThePath) {
+    const fs::path path = dir_ / "does_not_exist.png";
+    const std::string message = exceptionMessage([&] { readImage(path); });
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+}
+
+TEST_F(ImageIoTest, UnknownExtensionWritesNothing) {
+    const Image image = gradient(4, 4);
+    for (const char* name : {"out.xyz", "out.exr", "no_extension"}) {
+        const fs::path path = dir_ / name;
+        const std::string message = exceptionMessage([&] { writeImage(image, path); });
+        EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+        EXPECT_FALSE(fs::exists(path));
+    }
+    EXPECT_EQ(entryCount(), 0);
+}
+
+TEST_F(ImageIoTest, FailedWriteLeavesNoFile) {
+    const Image image = gradient(4, 4);
+    for (const char* name : {"missing_dir/out.png", "missing_dir/out.pfm", "missing_dir/out.hdr"}) {
+        const fs::path path = dir_ / name;
+        const std::string message = exceptionMessage([&] { writeImage(image, path); });
+        EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+        EXPECT_FALSE(fs::exists(path));
+    }
+    EXPECT_EQ(entryCount(), 0);
+}
+
+TEST_F(ImageIoTest, OverwriteReplacesTheFile) {
+    const fs::path path = dir_ / "twice.pfm";
+    Image first(2, 2);
+    first.pixels.assign(4, glm::vec3(1.0f));
+    writeImage(first, path);
+    Image second(3, 1);
+    second.pixels.assign(3, glm::vec3(0.25f));
+    writeImage(second, path);
+    const Image read = readImage(path);
+    EXPECT_EQ(read.width, 3u);
+    EXPECT_EQ(read.at(2, 0), glm::vec3(0.25f));
+    EXPECT_EQ(entryCount(), 1);
+}
+
+TEST_F(ImageIoTest, NonFiniteWrittenAsZero) {
+    Image image(2, 1);
+    image.at(0, 0) = glm::vec3(std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN(), 1.0f);
+    image.at(1, 0) = glm::vec3(-std::numeric_limits<float>::infinity(), 2.0f, 3.0f);
+    for (const char* name : {"nan.pfm", "nan.hdr"}) {
+        const fs::path path = dir_ / name;
+        writeImage(image, path);
+        const Image read = readImage(path);
+        EXPECT_EQ(read.at(0, 0).r, 0.0f) << name;
+        EXPECT_EQ(read.at(0, 0).g, 0.0f) << name;
+        EXPECT_NEAR(read.at(0, 0).b, 1.0f, 1.0f / 128.0f) << name;
+        EXPECT_EQ(read.at(1, 0).r, 0.0f) << name;
+    }
+}
+
+TEST(ImageDiffTest, IdenticalImages) {
+    const Image a = gradient(10, 10);
+    const ImageDiff d = diffImages(a, a);
+    EXPECT_EQ(d.rmse, 0.0);
+    EXPECT_TRUE(std::isinf(d.psnr));
+    EXPECT_GT(d.psnr, 0.0);
+    EXPECT_EQ(d.maxAbsError, 0.0);
+    EXPECT_EQ(d.meanAbsError, 0.0);
+    EXPECT_EQ(d.shareOver1of255, 0.0);
+    EXPECT_EQ(d.shareOver005, 0.0);
+}
+
+TEST(ImageDiffTest, HandComputed2x1) {
+    Image a(2, 1);
+    Image b(2, 1);
+    a.at(0, 0) = glm::vec3(0.0f, 0.0f, 0.0f);
+    b.at(0, 0) = glm::vec3(0.01f, 0.0f, 0.0f);  // over 1/255, under 0.05
+    a.at(1, 0) = glm::vec3(1.0f, 1.0f, 1.0f);
+    b.at(1, 0) = glm::vec3(1.0f, 1.0f, 0.5f);  // over both
+    const ImageDiff d = diffImages(a, b);
+    // Channel errors 0.01, 0, 0, 0, 0, 0.5: mse = 0.2501 / 6.
+    EXPECT_NEAR(d.rmse, 0.20416496597931127, 1e-7);
+    EXPECT_NEAR(d.psnr, 13.80037558653141, 1e-5);
+    EXPECT_NEAR(d.maxAbsError, 0.5, 1e-7);
+    EXPECT_NEAR(d.meanAbsError, 0.085, 1e-7);
+    EXPECT_DOUBLE_EQ(d.shareOver1of255, 1.0);
+    EXPECT_DOUBLE_EQ(d.shareOver005, 0.5);
+    // Symmetric.
+    const ImageDiff e = diffImages(b, a);
+    EXPECT_DOUBLE_EQ(e.rmse, d.rmse);
+}
+
+TEST(ImageDiffTest, NonFiniteNeverComparesWell) {
+    Image a(1, 1);
+    Image b(1, 1);
+    b.at(0, 0) = glm::vec3(std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f);
+    const ImageDiff d = diffImages(a, b);
+    EXPECT_TRUE(std::isinf(d.rmse));
+    EXPECT_FALSE(d.psnr > 0.0);
+    EXPECT_EQ(d.shareOver005, 1.0);
+}
+
+TEST(ImageDiffTest, SizeMismatch) {
+    const std::string message = exceptionMessage([] { diffImages(Image(3, 2), Image(2, 3)); });
+    EXPECT_EQ(message, "image sizes differ: 3x2 vs 2x3");
+    EXPECT_THROW(diffHeatMap(Image(3, 2), Image(3, 3)), InputError);
+}
+
+TEST(ImageDiffTest, HeatMapRamp) {
+    Image a(5, 1);
+    Image b(5, 1);
+    const float errors[] = {0.0f, 0.1f / 6.0f, 0.05f, 0.25f / 3.0f, 0.5f};
+    for (std::uint32_t x = 0; x < 5; ++x) b.at(x, 0) = glm::vec3(0.0f, errors[x], 0.0f);
+    const Image heat = diffHeatMap(a, b, 0.1f);
+    ASSERT_EQ(heat.width, 5u);
+    const float tol = 1e-5f;
+    EXPECT_EQ(heat.at(0, 0), glm::vec3(0.0f));  // black
+    EXPECT_NEAR(heat.at(1, 0).r, 0.5f, tol);  // dark red
+    EXPECT_EQ(heat.at(1, 0).g, 0.0f);
+    EXPECT_NEAR(heat.at(2, 0).r, 1.0f, tol);  // red to yellow
+    EXPECT_NEAR(heat.at(2, 0).g, 0.5f, tol);
+    EXPECT_EQ(heat.at(2, 0).b, 0.0f);
+    EXPECT_NEAR(heat.at(3, 0).b, 0.5f, tol);  // yellow to white
+    EXPECT_EQ(heat.at(4, 0), glm::vec3(1.0f));  // saturated white
+}
+
+TEST(SrgbTest, KnownValues) {
+    EXPECT_NEAR(srgbToLinear(0.5f), 0.21404114f, 1e-6f);
+    EXPECT_NEAR(linearToSrgb(0.0031308f), 0.04045f, 1e-5f);
+    EXPECT_NEAR(linearToSrgb(0.5f), 0.7353570f, 1e-6f);
+    EXPECT_EQ(srgbToLinear(0.0f), 0.0f);
+    EXPECT_NEAR(srgbToLinear(1.0f), 1.0f, 1e-6f);
+    EXPECT_NEAR(linearToSrgb(1.0f), 1.0f, 1e-6f);
+    EXPECT_NEAR(srgbToLinear(0.04045f), 0.04045f / 12.92f, 1e-7f);
+}
+
+TEST(SrgbTest, RoundTrip) {
+    for (int i = 0; i <= 1000; ++i) {
+        const float v = float(i) / 1000.0f;
+        EXPECT_NEAR(linearToSrgb(srgbToLinear(v)), v, 2e-6f) << v;
+        EXPECT_NEAR(srgbToLinear(linearToSrgb(v)), v, 2e-6f) << v;
+    }
+    // Monotonic through the threshold between the linear and power segments.
+    float previous = -1.0f;
+    for (int i = 0; i <= 200; ++i) {
+        const float v = 0.03f + float(i) * 0.0001f;
+        const float l = srgbToLinear(v);
+        EXPECT_GT(l, previous);
+        previous = l;
+    }
+}
+
+}  // namespace
+}  // namespace vitrum

@@ -1,0 +1,565 @@
+// Scene loading: the course's real OBJ/MTL files, the JSON scene format and its errors.
+#include "scene/scene_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <glm/glm.hpp>
+#include <initializer_list>
+#include <random>
+#include <string>
+
+#include "common/error.h"
+#include "image/srgb.h"
+#include "scene/json_lines.h"
+#include "scene/mtl_material.h"
+#include "scene/mtl_parser.h"
+
+namespace vitrum {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path course(const std::string& relative) { return fs::path(VITRUM_SHARED_DIR) / "scenes/course" / relative; }
+
+// A fresh directory per test, so that file names (and with them warning texts) are new.
+fs::path tempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    fs::path dir =
+        fs::temp_directory_path() / "vitrum_scene_test" / (std::string(info->test_suite_name()) + "." + info->name());
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+fs::path write(const fs::path& file, const std::string& text) {
+    std::ofstream(file, std::ios::binary) << text;
+    return file;
+}
+
+// Runs `load` and expects an InputError whose message contains every one of `parts`.
+void expectInputError(const std::function<void()>& load, std::initializer_list<std::string> parts) {
+    try {
+        load();
+        ADD_FAILURE() << "no InputError thrown";
+    } catch (const InputError& e) {
+        for (const std::string& part : parts)
+            EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+}
+
+const Material& materialNamed(const Scene& scene, const std::string& name) {
+    for (const Material& m : scene.materials)
+        if (m.name == name) return m;
+    throw std::runtime_error("no material " + name);
+}
+
+void expectVec3Near(glm::vec3 a, glm::vec3 b, float tolerance = 1e-5f) {
+    EXPECT_NEAR(a.x, b.x, tolerance);
+    EXPECT_NEAR(a.y, b.y, tolerance);
+    EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+const std::string kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+
+// ---------------------------------------------------------------------------------------- OBJ
+
+TEST(SceneObj, CourseTriangleAndObjectCounts) {
+    struct Case {
+        const char* file;
+        std::size_t triangles, objects;
+    };
+    for (const Case& c :
+         {Case{"geosphere/geosphere.obj", 1280, 1}, Case{"cornell_box2/cornell_box2.obj", 2906, 7},
+          Case{"geospheres_5x5/geospheres_5x5.obj", 32000, 25}, Case{"box_sphere/box_sphere.obj", 734, 3}}) {
+        Scene scene = loadScene(course(c.file));
+        EXPECT_EQ(scene.triangles.size(), c.triangles) << c.file;
+        EXPECT_EQ(scene.objectNames.size(), c.objects) << c.file;
+        for (const Triangle& t : scene.triangles) {
+            ASSERT_LT(t.material, scene.materials.size());
+            ASSERT_LT(t.object, scene.objectNames.size());
+            for (int i = 0; i < 3; ++i) {
+                ASSERT_NEAR(glm::length(t.normal[i]), 1.0f, 1e-4f);
+                ASSERT_TRUE(std::isfinite(t.position[i].x + t.position[i].y + t.position[i].z));
+            }
+        }
+    }
+    Scene geosphere = loadScene(course("geosphere/geosphere.obj"));
+    EXPECT_EQ(geosphere.objectNames[0], "geosphere.obj/GeoSphere001");
+    EXPECT_EQ(geosphere.source, course("geosphere/geosphere.obj"));
+}
+
+TEST(SceneObj, NormalsUvsAndPolygons) {
+    fs::path dir = tempDir();
+    fs::path obj = write(dir / "quad.obj",
+                         "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\n"
+                         "vn 0 0 2\nvn 0 0 0\nvt 0.25 0.75\n"
+                         "o quad\nf 1/1/1 2//2 3 4\n"  // a quad: normals on two corners only, one of them zero
+                         "o tri\nf 1 3 2\n");
+    Scene scene = loadScene(obj);
+    ASSERT_EQ(scene.triangles.size(), 3u);
+    ASSERT_EQ(scene.objectNames.size(), 2u);
+    EXPECT_EQ(scene.objectNames[0], "quad.obj/quad");
+    const Triangle& a = scene.triangles[0];
+    expectVec3Near(a.normal[0], {0, 0, 1});  // normalised
+    expectVec3Near(a.normal[1], {0, 0, 1});  // zero vn -> geometric
+    expectVec3Near(a.normal[2], {0, 0, 1});  // none -> geometric
+    EXPECT_EQ(a.uv[0], glm::vec2(0.25f, 0.75f));
+    EXPECT_EQ(a.uv[1], glm::vec2(0.0f));
+    expectVec3Near(scene.triangles[1].position[2], {0, 2, 0});
+    EXPECT_EQ(scene.triangles[2].object, 1u);
+    expectVec3Near(scene.triangles[2].normal[0], {0, 0, -1});  // wound the other way
+    EXPECT_EQ(scene.materials[a.material].name, "default");
+    EXPECT_EQ(scene.materials[a.material].model, MaterialModel::Lambert);
+}
+
+TEST(SceneObj, ZeroAreaTriangleIsKeptWithAUnitNormal) {
+    fs::path obj = write(tempDir() / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+    Scene scene = loadScene(obj);
+    ASSERT_EQ(scene.triangles.size(), 1u);
+    EXPECT_NEAR(glm::length(scene.triangles[0].normal[0]), 1.0f, 1e-6f);
+}
+
+TEST(SceneObj, NonFiniteCoordinatesAreErrorsWithLine) {
+    fs::path dir = tempDir();
+    for (const char* bad : {"nan", "inf", "-inf", "1e39"}) {
+        fs::path obj = write(dir / "bad.obj", std::string("# comment\nv 0 0 0\nv 1 ") + bad + " 0\nv 0 1 0\nf 1 2 3\n");
+        expectInputError([&] { loadScene(obj); }, {"bad.obj:3:", "not a finite number"});
+    }
+    fs::path obj = write(dir / "words.obj", "v 0 0 0\nv 1 x 0\nv 0 1 0\nf 1 2 3\n");
+    expectInputError([&] { loadScene(obj); }, {"words.obj:2:", "v expects three numbers"});
+}
+
+TEST(SceneObj, MissingEmptyAndGarbageFiles) {
+    fs::path dir = tempDir();
+    expectInputError([&] { loadScene(dir / "missing.obj"); }, {"missing.obj", "cannot open"});
+    fs::path empty = write(dir / "empty.obj", "");
+    expectInputError([&] { loadScene(empty); }, {"empty.obj", "contains no triangles"});
+    fs::path verticesOnly = write(dir / "points.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n");
+    expectInputError([&] { loadScene(verticesOnly); }, {"points.obj", "contains no triangles"});
+    std::mt19937 random(12345);
+    for (int round = 0; round < 20; ++round) {
+        std::string bytes(4096, '\0');
+        for (char& b : bytes) b = char(random() & 0xff);
+        if (round % 2) {  // make sure the parser meets face and vertex statements among the garbage
+            for (std::size_t i = 0; i + 8 < bytes.size(); i += 97)
+                bytes.replace(i, 3, round % 4 == 1 ? "\nf " : "\nv ");
+        }
+        fs::path garbage = write(dir / "garbage.obj", bytes);
+        expectInputError([&] { loadScene(garbage); }, {"garbage.obj"});
+    }
+}
+
+TEST(SceneObj, OutOfRangeIndicesAreErrors) {
+    fs::path dir = tempDir();
+    const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    for (const char* face :
+         {"f 1 2 9", "f 1 2 -9", "f 0 1 2", "f 1 2 3 70000", "f 1 2 3 4 5 -100", "f 1//4 2 3", "f 1/9 2 3"}) {
+        fs::path obj = write(dir / "index.obj", vertices + face + "\n");
+        expectInputError([&] { loadScene(obj); }, {"index.obj"});
+    }
+}
+
+// ---------------------------------------------------------------------------------------- MTL
+
+TEST(SceneMtl, CornellBoxMaterialMapping) {
+    Scene scene = loadScene(course("cornell_box2/cornell_box2.obj"));
+    EXPECT_EQ(materialNamed(scene, "white_lambert").model, MaterialModel::Lambert);  // shader 5
+    const Material& glass = materialNamed(scene, "clear_glass");                     // "clear_glass\t"
+    EXPECT_EQ(glass.model, MaterialModel::Glass);
+    EXPECT_FLOAT_EQ(glass.ior, 1.5f);
+    EXPECT_EQ(glass.attenuation, glm::vec3(0.0f));                               // no Tf: clear
+    EXPECT_EQ(materialNamed(scene, "mirror").model, MaterialModel::Phong);       // shader 3
+    EXPECT_EQ(materialNamed(scene, "white_phong").model, MaterialModel::Phong);  // shader 7, illum 2
+    EXPECT_FLOAT_EQ(materialNamed(scene, "white_phong").ior, 1.46f);
+    const Material& red = materialNamed(scene, "red_lambert");
+    expectVec3Near(red.diffuse, {srgbToLinear(0.95f), srgbToLinear(0.05f), srgbToLinear(0.05f)}, 1e-7f);
+    expectVec3Near(red.ambient, glm::vec3(srgbToLinear(0.1f)), 1e-7f);
+    EXPECT_EQ(red.attenuation, glm::vec3(1.0f));  // Tf 1 1 1 is kept as written (matters only for glass)
+    EXPECT_FLOAT_EQ(red.shininess, 32.0f);
+    // Each object has one material: the glass sphere's triangles are glass.
+    for (const Triangle& t : scene.triangles) {
+        if (scene.materials[t.material].name == "clear_glass") {
+            EXPECT_NE(scene.objectNames[t.object].find("/Sphere"), std::string::npos);
+        }
+    }
+}
+
+TEST(SceneMtl, GeosphereShader7FallsBackToIllumWithAWarning) {
+    fs::path dir = tempDir();
+    fs::copy(course("geosphere/geosphere.obj"), dir / "geosphere.obj");
+    fs::copy(course("geosphere/geosphere.mtl"), dir / "geosphere.mtl");
+    int before = warningCount();
+    Scene scene = loadScene(dir / "geosphere.obj");
+    EXPECT_EQ(warningCount(), before + 1);
+    const Material& m = materialNamed(scene, "wire_214229166");
+    EXPECT_EQ(m.model, MaterialModel::Phong);
+    EXPECT_NEAR(m.diffuse.x, srgbToLinear(0.83921576f), 1e-7f);
+    expectVec3Near(m.attenuation, {1.0f, 0.1f, 1.0f}, 0.0f);  // Tf is not decoded
+}
+
+TEST(SceneMtl, ModelTable) {
+    EXPECT_EQ(materialModelFor(1, std::nullopt), MaterialModel::Normal);
+    EXPECT_EQ(materialModelFor(2, 4), MaterialModel::Lambert);
+    EXPECT_EQ(materialModelFor(3, 4), MaterialModel::Phong);
+    EXPECT_EQ(materialModelFor(4, 2), MaterialModel::Glass);
+    EXPECT_EQ(materialModelFor(5, 7), MaterialModel::Lambert);
+    EXPECT_EQ(materialModelFor(6, 2), MaterialModel::Mirror);
+    bool substituted = false;
+    for (std::optional<int> shader :
+         {std::optional<int>(7), std::optional<int>(8), std::optional<int>(0), std::optional<int>()}) {
+        EXPECT_EQ(materialModelFor(shader, 4, &substituted), MaterialModel::Glass);
+        EXPECT_TRUE(substituted);
+        EXPECT_EQ(materialModelFor(shader, 6), MaterialModel::Glass);
+        EXPECT_EQ(materialModelFor(shader, 7), MaterialModel::Glass);
+        EXPECT_EQ(materialModelFor(shader, 3), MaterialModel::Mirror);
+        EXPECT_EQ(materialModelFor(shader, 5), MaterialModel::Mirror);
+        EXPECT_EQ(materialModelFor(shader, 2), MaterialModel::Phong);
+        EXPECT_EQ(materialModelFor(shader, std::nullopt), MaterialModel::Phong);
+    }
+    materialModelFor(4, std::nullopt, &substituted);
+    EXPECT_FALSE(substituted);
+}
+
+TEST(SceneMtl, SrgbDecodingDefaultsAndLinearTf) {
+    fs::path dir = tempDir();
+    write(dir / "m.mtl",
+          "newmtl half\nKd 0.5 0.5 0.5\nKs 0.5\nTf 0.5 1 2\nshader 4\n"
+          "newmtl bare\nshader 2\n");
+    write(dir / "m.obj",
+          "mtllib m.mtl\n" + kTriangleObj.substr(0, 24) + "usemtl half\nf 1 2 3\nusemtl bare\nf 1 3 2\n");
+    Scene scene = loadScene(dir / "m.obj");
+    const Material& half = materialNamed(scene, "half");
+    expectVec3Near(half.diffuse, glm::vec3(0.21404114f), 1e-7f);
+    expectVec3Near(half.specular, glm::vec3(0.21404114f), 1e-7f);  // one value: a grey
+    expectVec3Near(half.attenuation, {0.5f, 1.0f, 2.0f}, 0.0f);
+    const Material& bare = materialNamed(scene, "bare");
+    const Material defaults;
+    EXPECT_EQ(bare.diffuse, defaults.diffuse);
+    EXPECT_EQ(bare.ambient, glm::vec3(0.0f));
+    EXPECT_EQ(bare.specular, glm::vec3(0.0f));
+    EXPECT_EQ(bare.shininess, 1.0f);
+    EXPECT_EQ(bare.ior, 1.5f);
+    EXPECT_EQ(bare.attenuation, glm::vec3(0.0f));
+    EXPECT_EQ(scene.materials[scene.triangles[0].material].name, "half");
+    EXPECT_EQ(scene.materials[scene.triangles[1].material].name, "bare");
+}
+
+TEST(SceneMtl, KsTypoReadsAsOneWithOneWarningPerFile) {
+    for (const char* file : {"box_sphere/box_sphere.mtl", "allied_avenger_6887/6887_allied_avenger.mtl"}) {
+        std::vector<MtlEntry> entries = parseMtlFile(course(file));
+        ASSERT_FALSE(entries.empty());
+        for (const MtlEntry& e : entries) EXPECT_EQ(e.ks, glm::vec3(1.0f)) << file << " " << e.name;
+    }
+    fs::path mtl = write(tempDir() / "typo.mtl", "newmtl a\nKs 1.0. 1.0 1.0\nKd 0.5. 0.5 0.5\n");
+    int before = warningCount();
+    std::vector<MtlEntry> entries = parseMtlFile(mtl);
+    EXPECT_EQ(warningCount(), before + 1);
+    EXPECT_EQ(entries[0].kd, glm::vec3(0.5f));
+}
+
+TEST(SceneMtl, MalformedNumbersAreErrorsWithLine) {
+    fs::path dir = tempDir();
+    for (const char* line :
+         {"Kd 0.5 x 0.2", "Kd 0.5 0.5", "Kd", "Ks 1..0 1 1", "Ns nan", "Ni 1.5 2", "illum 2.5", "Tf 1 1 1 1"}) {
+        fs::path mtl = write(dir / "bad.mtl", std::string("newmtl a\nNs 1\n") + line + "\n");
+        std::string key = std::string(line).substr(0, 2);
+        expectInputError([&] { parseMtlFile(mtl); }, {"bad.mtl:3:", key == "il" ? "illum" : key, "expects"});
+    }
+    expectInputError([&] { parseMtlFile(dir / "none.mtl"); }, {"none.mtl"});
+}
+
+TEST(SceneMtl, MissingTextureFallsBackToKdWithAWarning) {
+    fs::path dir = tempDir();
+    fs::copy(course("box_sphere/box_sphere.obj"), dir / "box_sphere.obj");
+    fs::copy(course("box_sphere/box_sphere.mtl"), dir / "box_sphere.mtl");
+    int before = warningCount();
+    Scene scene = loadScene(dir / "box_sphere.obj");
+    EXPECT_GT(warningCount(), before);
+    const Material& chessboard = materialNamed(scene, "chessboard");
+    EXPECT_EQ(chessboard.diffuseTexture, -1);
+    EXPECT_EQ(chessboard.model, MaterialModel::Lambert);
+    expectVec3Near(chessboard.diffuse, glm::vec3(srgbToLinear(0.95f)), 1e-7f);
+    const Material& glass = materialNamed(scene, "glass");  // named glass, but shader 3
+    EXPECT_EQ(glass.model, MaterialModel::Phong);
+    EXPECT_EQ(glass.specular, glm::vec3(1.0f));  // "Ks 1.0. 1.0 1.0"
+    EXPECT_TRUE(scene.textures.empty());
+}
+
+TEST(SceneMtl, TexturesAreLoadedOncePerFile) {
+    fs::path dir = tempDir();
+    fs::create_directories(dir / "tex");
+    fs::copy(course("allied_avenger_6887/4150p04.jpg"), dir / "tex/4150p04.jpg");
+    write(dir / "t.mtl", "newmtl a\nmap_Kd tex/4150p04.jpg\nnewmtl b\nmap_Kd -s 1 1 1 tex\\4150p04.jpg\n");
+    write(dir / "t.obj",
+          "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl a\nf 1/1 2/1 3/1\nusemtl b\nf 1 3 2\n");
+    Scene scene = loadScene(dir / "t.obj");
+    ASSERT_EQ(scene.textures.size(), 1u);
+    EXPECT_GT(scene.textures[0].width, 0);
+    EXPECT_EQ(scene.textures[0].texels.size(), std::size_t(scene.textures[0].width) * scene.textures[0].height);
+    EXPECT_EQ(materialNamed(scene, "a").diffuseTexture, 0);
+    EXPECT_EQ(materialNamed(scene, "b").diffuseTexture, 0);
+}
+
+TEST(SceneMtl, UnknownMaterialAndMissingLibraryWarn) {
+    fs::path dir = tempDir();
+    write(dir / "u.mtl", "newmtl known\nKd 1 0 0\nshader 2\n");
+    write(dir / "u.obj", "mtllib u.mtl\n" + kTriangleObj.substr(0, 24) + "usemtl unknown\nf 1 2 3\n");
+    int before = warningCount();
+    Scene scene = loadScene(dir / "u.obj");
+    EXPECT_EQ(warningCount(), before + 1);
+    EXPECT_EQ(scene.materials[scene.triangles[0].material].name, "default");
+
+    write(dir / "m.obj", "mtllib nowhere.mtl\n" + kTriangleObj.substr(0, 24) + "usemtl x\nf 1 2 3\n");
+    before = warningCount();
+    scene = loadScene(dir / "m.obj");
+    EXPECT_GE(warningCount(), before + 1);
+    EXPECT_EQ(scene.materials[scene.triangles[0].material].name, "default");
+}
+
+// --------------------------------------------------------------------------------------- JSON
+
+TEST(SceneJson, EveryFieldRoundTrips) {
+    fs::path dir = tempDir();
+    write(dir / "tri.obj", kTriangleObj);
+    write(dir / "scene.json", R"({
+  "camera": {"from": [1, -4, 2], "at": [0.5, 0, 0.25], "up": [0, 1, 0], "fov_y": 30.5, "width": 320, "height": 200},
+  "lights": [{"position": [1, 2, 3], "colour": [0.5, 0.25, 2], "falloff": "inverse_square"},
+             {"position": [-1, -2, -3]}],
+  "background": {"colour": [0.1, 0.2, 0.3]},
+  "air_ior": 1.33,
+  "objects": [{"obj": "tri.obj"}, {"obj": ")" +
+                                  (dir / "tri.obj").string() + R"("}],
+  "render": {"spp": 16, "max_depth": 0, "fresnel": "schlick-exp2", "min_weight": 0.01}
+})");
+    Scene s = loadScene(dir / "scene.json");
+    EXPECT_EQ(s.source, dir / "scene.json");
+    EXPECT_EQ(s.camera.from, glm::vec3(1, -4, 2));
+    EXPECT_EQ(s.camera.at, glm::vec3(0.5f, 0, 0.25f));
+    EXPECT_EQ(s.camera.up, glm::vec3(0, 1, 0));
+    EXPECT_FLOAT_EQ(s.camera.fovY, 30.5f);
+    EXPECT_EQ(s.camera.width, 320u);
+    EXPECT_EQ(s.camera.height, 200u);
+    ASSERT_EQ(s.lights.size(), 2u);
+    EXPECT_EQ(s.lights[0].position, glm::vec3(1, 2, 3));
+    EXPECT_EQ(s.lights[0].colour, glm::vec3(0.5f, 0.25f, 2));
+    EXPECT_TRUE(s.lights[0].inverseSquare);
+    EXPECT_EQ(s.lights[1].colour, glm::vec3(1.0f));
+    EXPECT_FALSE(s.lights[1].inverseSquare);
+    EXPECT_EQ(s.background.colour, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_FLOAT_EQ(s.airIor, 1.33f);
+    EXPECT_EQ(s.triangles.size(), 2u);
+    ASSERT_EQ(s.objectNames.size(), 2u);
+    EXPECT_EQ(s.triangles[1].object, 1u);
+    EXPECT_EQ(s.settings.samplesPerPixel, 16u);
+    EXPECT_EQ(s.settings.maxDepth, 0u);
+    EXPECT_EQ(s.settings.fresnel, FresnelModel::SchlickExp2);
+    EXPECT_FLOAT_EQ(s.settings.minWeight, 0.01f);
+}
+
+TEST(SceneJson, DefaultsAndAutomaticCamera) {
+    fs::path dir = tempDir();
+    write(dir / "tri.obj", kTriangleObj);
+    Scene s = loadScene(write(dir / "a.json", R"({"objects": [{"obj": "tri.obj"}]})"));
+    const RenderSettings defaults;
+    EXPECT_EQ(s.settings.samplesPerPixel, defaults.samplesPerPixel);
+    EXPECT_EQ(s.settings.maxDepth, 10u);
+    EXPECT_EQ(s.settings.fresnel, FresnelModel::Schlick);
+    EXPECT_EQ(s.background.colour, glm::vec3(0.0f));
+    EXPECT_EQ(s.airIor, 1.0f);
+    EXPECT_EQ(s.lights.size(), 1u);  // the automatic camera's light
+    expectVec3Near(s.camera.at, {0.5f, 0.5f, 0.0f});
+
+    s = loadScene(write(dir / "b.json", R"({"objects": [{"obj": "tri.obj"}], "lights": []})"));
+    EXPECT_TRUE(s.lights.empty());
+    expectVec3Near(s.camera.at, {0.5f, 0.5f, 0.0f});
+
+    s = loadScene(
+        write(dir / "c.json",
+              R"({"objects": [{"obj": "tri.obj"}], "camera": {"from": [0, 0, 5], "at": [0, 0, 0], "up": [0, 1, 0]}})"));
+    EXPECT_TRUE(s.lights.empty());
+    EXPECT_FLOAT_EQ(s.camera.fovY, 45.0f);
+    EXPECT_EQ(s.camera.width, 640u);
+}
+
+TEST(SceneJson, GlassOverrideForGeospheres) {
+    fs::path dir = tempDir();
+    fs::path json =
+        write(dir / "glass.json", R"({"objects": [{"obj": ")" + course("geospheres_5x5/geospheres_5x5.obj").string() +
+                                      R"(", "mtl": ")" + course("geospheres_5x5/geospheres_5x5_glass.mtl").string() +
+                                      R"("}]})");
+    Scene s = loadScene(json);
+    EXPECT_EQ(s.triangles.size(), 32000u);
+    EXPECT_EQ(s.materials.size(), 25u);
+    for (const Material& m : s.materials) {
+        EXPECT_EQ(m.model, MaterialModel::Glass) << m.name;
+        EXPECT_FLOAT_EQ(m.ior, 1.46f);
+    }
+}
+
+TEST(SceneJson, OverrideWorksWithoutAnMtllibLine) {
+    fs::path dir = tempDir();
+    write(dir / "g.mtl", "newmtl g\nshader 4\nNi 1.7\n");
+    write(dir / "tri.obj", "# no mtllib\n" + kTriangleObj.substr(0, 24) + "usemtl g\nf 1 2 3\n");
+    Scene s = loadScene(write(dir / "s.json", R"({"objects": [{"obj": "tri.obj", "mtl": "g.mtl"}]})"));
+    EXPECT_EQ(s.materials[s.triangles[0].material].model, MaterialModel::Glass);
+    EXPECT_FLOAT_EQ(s.materials[s.triangles[0].material].ior, 1.7f);
+}
+
+TEST(SceneJson, TransformsApplyScaleRotateTranslateInOrder) {
+    fs::path dir = tempDir();
+    write(dir / "tri.obj", "v 1 0 0\nv 0 1 0\nv 0 0 0\nvn 0 0 1\nf 1//1 2//1 3//1\n");
+    auto load = [&](const std::string& transform) {
+        return loadScene(write(dir / "t.json", R"({"objects": [{"obj": "tri.obj", "transform": )" + transform + "}]}"));
+    };
+    Scene moved = load(R"({"translate": [1, 2, 3]})");
+    expectVec3Near(moved.triangles[0].position[0], {2, 2, 3});
+    expectVec3Near(moved.triangles[0].position[2], {1, 2, 3});
+    // (1,0,0) scaled by 2 -> (2,0,0), rotated 90 deg about z -> (0,2,0), translated -> (1,3,1).
+    Scene s = load(R"({"scale": 2, "rotate_deg": [0, 0, 90], "translate": [1, 1, 1]})");
+    expectVec3Near(s.triangles[0].position[0], {1, 3, 1});
+    // x first, then z: (0,1,0) -> (0,0,1) -> (0,0,1); z first would give (-1,0,0).
+    s = load(R"({"rotate_deg": [90, 0, 90]})");
+    expectVec3Near(s.triangles[0].position[1], {0, 0, 1});
+    // Normals use the inverse transpose: a triangle in the plane x + y = const keeps its normal
+    // perpendicular after a non-uniform scale.
+    write(dir / "tri.obj", "v 1 0 0\nv 0 1 0\nv 1 0 1\nvn 1 1 0\nf 1//1 2//1 3//1\n");
+    s = load(R"({"scale": [1, 3, 1]})");
+    const Triangle& t = s.triangles[0];
+    EXPECT_NEAR(glm::dot(t.normal[0], t.position[1] - t.position[0]), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::length(t.normal[0]), 1.0f, 1e-6f);
+}
+
+TEST(SceneJson, MirroringKeepsTheWindingOutward) {
+    fs::path dir = tempDir();
+    auto outward = [](const Triangle& t) {  // the geosphere is centred on the origin
+        glm::vec3 g = glm::cross(t.position[1] - t.position[0], t.position[2] - t.position[0]);
+        return glm::dot(g, t.position[0] + t.position[1] + t.position[2]) > 0.0f;
+    };
+    Scene plain = loadScene(course("geosphere/geosphere.obj"));
+    ASSERT_TRUE(outward(plain.triangles[0]));
+    fs::path json = write(dir / "m.json", R"({"objects": [{"obj": ")" + course("geosphere/geosphere.obj").string() +
+                                              R"(", "transform": {"scale": [-1, 1, 1]}}]})");
+    Scene mirrored = loadScene(json);
+    for (std::size_t i = 0; i < mirrored.triangles.size(); ++i)
+        ASSERT_EQ(outward(mirrored.triangles[i]), outward(plain.triangles[i])) << i;
+}
+
+class SceneJsonErrors : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = tempDir();
+        write(dir / "tri.obj", kTriangleObj);
+    }
+    // The scene's objects line is line 1, the tested value is on line 2.
+    void expectError(const std::string& secondLine, std::initializer_list<std::string> parts) {
+        fs::path json = write(dir / "scene.json", "{\"objects\": [{\"obj\": \"tri.obj\"}],\n" + secondLine + "\n}\n");
+        expectInputError([&] { loadScene(json); }, parts);
+    }
+    fs::path dir;
+};
+
+TEST_F(SceneJsonErrors, CameraValues) {
+    const std::string camera = R"("camera": {"from": [0, -5, 0], "at": [0, 0, 0], )";
+    expectError(camera + R"("fov_y": "wide"})", {"scene.json:2:", "\"fov_y\" must be", "got \"wide\""});
+    expectError(camera + R"("fov_y": 0})", {"scene.json:2:", "fov_y"});
+    expectError(camera + R"("fov_y": 180})", {"scene.json:2:", "fov_y"});
+    expectError(camera + R"("fov_y": 0.5})", {"scene.json:2:", "fov_y"});
+    expectError(camera + R"("width": 0})", {"scene.json:2:", "\"width\" must be an integer from 1 to 16384"});
+    expectError(camera + R"("width": 1000000})", {"scene.json:2:", "width"});
+    expectError(camera + R"("height": 2.5})", {"scene.json:2:", "height"});
+    expectError(camera + R"("up": [0, 1, 0]})", {"scene.json:2:", "parallel"});
+    expectError(camera + R"("up": [0, 0]})", {"scene.json:2:", "\"up\" must be an array of 3"});
+    expectError(R"("camera": {"from": [0, 0, 0], "at": [0, 0, 0]})", {"scene.json:2:", "differ"});
+    expectError(R"("camera": {"from": [0, 0, 5], "at": [0, 0, 0]})", {"scene.json:2:", "default"});
+    expectError(R"("camera": {"at": [0, 0, 0]})", {"scene.json:2:", "\"from\""});
+    expectError(R"("camera": [1, 2])", {"scene.json:2:", "\"camera\" must be an object"});
+}
+
+TEST_F(SceneJsonErrors, RenderAndLightValues) {
+    expectError(R"("render": {"max_depth": -1})", {"scene.json:2:", "max_depth", "from 0 to 64"});
+    expectError(R"("render": {"spp": 0})", {"scene.json:2:", "spp"});
+    expectError(R"("render": {"spp": 5000})", {"scene.json:2:", "spp"});
+    expectError(R"("render": {"min_weight": 2})", {"scene.json:2:", "min_weight"});
+    expectError(R"("render": {"fresnel": "fast"})", {"scene.json:2:", "\"schlick\""});
+    expectError(R"("lights": [{"position": [0, 0, "x"]}])", {"scene.json:2:", "position"});
+    expectError(R"("lights": [{"colour": [1, 1, 1]}])", {"scene.json:2:", "position"});
+    expectError(R"("lights": [{"position": [0, 0, 0], "colour": [-1, 1, 1]}])", {"scene.json:2:", "non-negative"});
+    expectError(R"("lights": [{"position": [0, 0, 0], "falloff": "linear"}])", {"scene.json:2:", "inverse_square"});
+    expectError(R"("lights": {})", {"scene.json:2:", "lights"});
+    expectError(R"("background": {"colour": "red"})", {"scene.json:2:", "colour"});
+    expectError(R"("air_ior": 0.5)", {"scene.json:2:", "air_ior"});
+}
+
+TEST_F(SceneJsonErrors, ObjectsAndFiles) {
+    expectInputError([&] { loadScene(dir / "missing.json"); }, {"missing.json", "cannot open"});
+    expectInputError([&] { loadScene(write(dir / "s.txt", "{}")); }, {"s.txt", "unknown scene format"});
+    expectInputError([&] { loadScene(write(dir / "bad.json", "{\n  \"objects\": [\n  }\n")); },
+                     {"bad.json:3:", "invalid JSON"});
+    expectInputError([&] { loadScene(write(dir / "bad.json", "[1, 2]")); }, {"bad.json", "object"});
+    expectInputError([&] { loadScene(write(dir / "bad.json", "{\"lights\": []}")); }, {"bad.json", "objects"});
+    expectInputError([&] { loadScene(write(dir / "bad.json", "{\"objects\": []}")); }, {"bad.json:1:", "non-empty"});
+    expectInputError([&] { loadScene(write(dir / "bad.json", "{\"objects\": [{\"obj\": 3}]}")); },
+                     {"bad.json:1:", "\"obj\" must be a string"});
+    expectInputError([&] { loadScene(write(dir / "bad.json", "{\n\"objects\": [{\"obj\": \"nope.obj\"}]}")); },
+                     {"bad.json:2:", "nope.obj"});
+    expectInputError(
+        [&] { loadScene(write(dir / "bad.json", "{\n\"objects\": [{\"obj\": \"tri.obj\", \"mtl\": \"no.mtl\"}]}")); },
+        {"bad.json:2:", "no.mtl"});
+    expectInputError([&] { loadScene(write(dir / "bad.json", "{\"objects\": [\"tri.obj\"]}")); },
+                     {"bad.json:1:", "\"objects[0]\" must be an object"});
+    expectError(R"("objects": [{"obj": "tri.obj", "transform": {"scale": 0}}])", {"scene.json:2:", "scale"});
+    expectError(R"("objects": [{"obj": "tri.obj", "transform": {"rotate_deg": 90}}])", {"scene.json:2:", "rotate_deg"});
+}
+
+TEST_F(SceneJsonErrors, UnknownKeysOnlyWarn) {
+    fs::path json =
+        write(dir / "scene.json", "{\"objects\": [{\"obj\": \"tri.obj\", \"colour\": 1}],\n \"foo\": {\"bar\": 1}}");
+    int before = warningCount();
+    EXPECT_NO_THROW(loadScene(json));
+    EXPECT_EQ(warningCount(), before + 2);
+}
+
+TEST(SceneJson, ValueLinesFollowTheText) {
+    auto lines = jsonValueLines("{\n \"a\": [1,\n  {\"b\\\"\": 2}],\n \"c\": {\"d\": \"x,]}\"}\n}");
+    EXPECT_EQ(lines[""], 1);
+    EXPECT_EQ(lines["/a"], 2);
+    EXPECT_EQ(lines["/a/0"], 2);
+    EXPECT_EQ(lines["/a/1"], 3);
+    EXPECT_EQ(lines["/a/1/b\\\""], 3);
+    EXPECT_EQ(lines["/c/d"], 4);
+}
+
+// ------------------------------------------------------------------------ automatic framing
+
+TEST(SceneLoader, BareObjIsFramedAutomatically) {
+    Scene s = loadScene(course("geosphere/geosphere.obj"));
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const Triangle& t : s.triangles)
+        for (const glm::vec3& p : t.position) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const float radius = glm::length(hi - lo) / 2;
+    expectVec3Near(s.camera.at, (lo + hi) / 2.0f);
+    const glm::vec3 view = s.camera.from - s.camera.at;
+    expectVec3Near(glm::normalize(view), glm::normalize(glm::vec3(1, -2, 1)));
+    EXPECT_NEAR(glm::length(view), 1.1f * radius / std::sin(glm::radians(22.5f)), 1e-4f);
+    EXPECT_EQ(s.camera.up, glm::vec3(0, 0, 1));
+    EXPECT_EQ(s.camera.fovY, 45.0f);
+    EXPECT_EQ(s.camera.width, 640u);
+    EXPECT_EQ(s.camera.height, 480u);
+    ASSERT_EQ(s.lights.size(), 1u);
+    expectVec3Near(s.lights[0].position, s.camera.from + glm::vec3(0, 0, radius));
+    EXPECT_EQ(s.lights[0].colour, glm::vec3(1.0f));
+    EXPECT_FALSE(s.lights[0].inverseSquare);
+}
+
+TEST(SceneLoader, FramingAnEmptySceneStaysFinite) {
+    Scene s;
+    frameAutomatically(s);
+    EXPECT_TRUE(std::isfinite(s.camera.from.x + s.camera.from.y + s.camera.from.z));
+    EXPECT_GT(glm::length(s.camera.from - s.camera.at), 0.0f);
+}
+
+}  // namespace
+}  // namespace vitrum

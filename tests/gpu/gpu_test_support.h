@@ -1,0 +1,84 @@
+// Rendering one scene on lavapipe and with the CPU reference, for the image-diff tests.
+// The Vulkan device is created once per test process with the validation layer on
+// (VITRUM_VALIDATION=1 from tests/CMakeLists.txt); any validation message fails the test.
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "bvh/bvh.h"
+#include "cpu/reference_renderer.h"
+#include "gpu/vulkan_device.h"
+#include "gpu/vulkan_renderer.h"
+#include "image/image_diff.h"
+#include "scene/scene_loader.h"
+
+namespace vitrum::testing {
+
+inline std::string sourcePath(const std::string& relative) { return std::string(VITRUM_SOURCE_DIR) + "/" + relative; }
+inline std::string sharedPath(const std::string& relative) { return std::string(VITRUM_SHARED_DIR) + "/" + relative; }
+
+inline VulkanDevice& testDevice() {
+    static VulkanDevice device("");
+    return device;
+}
+
+struct RenderPair {
+    Image gpu;
+    Image cpu;
+    RenderStats gpuStats;
+    RenderStats cpuStats;
+    ImageDiff diff;
+};
+
+inline RenderPair renderBoth(const Scene& scene, const VulkanRenderOptions& gpuOptions = {}) {
+    RenderPair result;
+    Bvh bvh = buildBvh(scene.triangles);
+    std::uint32_t before = testDevice().validationMessages();
+    result.gpu = renderVulkan(testDevice(), scene, bvh, gpuOptions, result.gpuStats);
+    EXPECT_EQ(testDevice().validationMessages(), before) << "Vulkan validation messages while rendering";
+    result.cpu = renderReference(scene, bvh, ReferenceOptions{}, result.cpuStats);
+    result.diff = diffImages(result.gpu, result.cpu);
+    return result;
+}
+
+// Standard deviation of the luminance-ish channel mean: 0 for a constant image.
+inline double imageSpread(const Image& image) {
+    double sum = 0, sumSquares = 0;
+    for (const glm::vec3& p : image.pixels) {
+        double v = (double(p.x) + p.y + p.z) / 3.0;
+        sum += v;
+        sumSquares += v * v;
+    }
+    double n = double(image.pixels.size());
+    return std::sqrt(std::max(0.0, sumSquares / n - (sum / n) * (sum / n)));
+}
+
+inline bool allFinite(const Image& image) {
+    for (const glm::vec3& p : image.pixels)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || p.x < 0 || p.y < 0 || p.z < 0)
+            return false;
+    return true;
+}
+
+// The thresholds every GPU-against-CPU test holds. Both backends compute in float without FMA
+// contraction, so pixels agree to a few ulps except where a ray passes within an ulp of a
+// triangle edge: there lavapipe and the CPU may pick different triangles (a silhouette or a
+// different branch of a glass ray tree). Such pixels are isolated, so we allow at most 0.5% of
+// pixels over 0.05 (measured: under 0.1% on every scene) while the mean error must stay below
+// 2e-3 (a few 8-bit steps would already be 8e-3; a wrong formula gives errors of 1e-2 and more).
+inline void expectImagesMatch(const RenderPair& r, double maxShareOver005 = 0.005, double maxMeanError = 2e-3) {
+    EXPECT_TRUE(allFinite(r.gpu)) << "GPU image has NaN, Inf or negative pixels";
+    EXPECT_TRUE(allFinite(r.cpu)) << "CPU image has NaN, Inf or negative pixels";
+    EXPECT_LE(r.diff.shareOver005, maxShareOver005) << "rmse " << r.diff.rmse << " psnr " << r.diff.psnr;
+    EXPECT_LE(r.diff.meanAbsError, maxMeanError) << "rmse " << r.diff.rmse << " psnr " << r.diff.psnr;
+    // A blank or constant image would match a blank reference: refuse it.
+    EXPECT_GT(imageSpread(r.gpu), 0.01) << "GPU image is (nearly) constant";
+    EXPECT_GT(imageSpread(r.cpu), 0.01) << "CPU image is (nearly) constant";
+    EXPECT_EQ(r.gpuStats.limits.loopLimitSuspected, 0u);
+}
+
+}  // namespace vitrum::testing
