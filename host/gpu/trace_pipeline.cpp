@@ -1,114 +1,14 @@
 #include "gpu/trace_pipeline.h"
 
-#include <vector>
-
-#include "gpu/vulkan_error.h"
 #include "trace.spv.h"
 
 namespace vitrum {
 
-TracePipeline::TracePipeline(const VulkanDevice& device) : device_(device.device()) {
-    std::vector<VkDescriptorSetLayoutBinding> bindings;
-    for (std::uint32_t b = 0; b < kTraceBindingCount; ++b)
-        bindings.push_back({
-            .binding = b,
-            .descriptorType = b == kBindingParams ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-            .descriptorCount = 1,
-            .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
-        });
-    VkDescriptorSetLayoutCreateInfo setInfo{
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
-        .bindingCount = std::uint32_t(bindings.size()),
-        .pBindings = bindings.data(),
-    };
-    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateDescriptorSetLayout(device_, &setInfo, nullptr, &setLayout));
-    setLayout_ = UniqueDescriptorSetLayout(device_, setLayout);
-
-    VkPipelineLayoutCreateInfo layoutInfo{
-        .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
-        .setLayoutCount = 1,
-        .pSetLayouts = &setLayout,
-    };
-    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-    VK_CHECK(vkCreatePipelineLayout(device_, &layoutInfo, nullptr, &pipelineLayout));
-    pipelineLayout_ = UniquePipelineLayout(device_, pipelineLayout);
-
-    VkShaderModuleCreateInfo moduleInfo{
-        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-        .codeSize = sizeof(trace_spv),
-        .pCode = trace_spv,
-    };
-    VkShaderModule module = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateShaderModule(device_, &moduleInfo, nullptr, &module));
-    UniqueShaderModule shaderModule(device_, module);
-
-    VkComputePipelineCreateInfo pipelineInfo{
-        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
-        .stage =
-            {
-                .sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                .stage = VK_SHADER_STAGE_COMPUTE_BIT,
-                .module = module,
-                .pName = "main",
-            },
-        .layout = pipelineLayout,
-    };
-    VkPipeline pipeline = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline));
-    pipeline_ = UniquePipeline(device_, pipeline);
-
-    VkDescriptorPoolSize sizes[] = {
-        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kTraceBindingCount - 1},
-    };
-    VkDescriptorPoolCreateInfo poolInfo{
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-        .maxSets = 1,
-        .poolSizeCount = 2,
-        .pPoolSizes = sizes,
-    };
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateDescriptorPool(device_, &poolInfo, nullptr, &pool));
-    pool_ = UniqueDescriptorPool(device_, pool);
-    VkDescriptorSetAllocateInfo allocateInfo{
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
-        .descriptorPool = pool,
-        .descriptorSetCount = 1,
-        .pSetLayouts = &setLayout,
-    };
-    VK_CHECK(vkAllocateDescriptorSets(device_, &allocateInfo, &set_));
-}
-
-void TracePipeline::bind(const std::array<const GpuBuffer*, kTraceBindingCount>& buffers) {
-    std::array<VkDescriptorBufferInfo, kTraceBindingCount> infos;
-    std::array<VkWriteDescriptorSet, kTraceBindingCount> writes;
-    for (std::uint32_t b = 0; b < kTraceBindingCount; ++b) {
-        infos[b] = {.buffer = buffers[b]->buffer(), .offset = 0, .range = VK_WHOLE_SIZE};
-        writes[b] = {
-            .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-            .dstSet = set_,
-            .dstBinding = b,
-            .descriptorCount = 1,
-            .descriptorType = b == kBindingParams ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-            .pBufferInfo = &infos[b],
-        };
-    }
-    vkUpdateDescriptorSets(device_, kTraceBindingCount, writes.data(), 0, nullptr);
-}
-
-void TracePipeline::record(VkCommandBuffer commands, std::uint32_t groupsX, std::uint32_t groupsY) const {
-    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
-    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_.get(), 0, 1, &set_, 0, nullptr);
-    vkCmdDispatch(commands, groupsX, groupsY, 1);
-    // Make the kernel's writes (pixels, states, statistics) visible to the host's reads.
-    VkMemoryBarrier barrier{
-        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
-        .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
-        .dstAccessMask = VK_ACCESS_HOST_READ_BIT,
-    };
-    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
-                         nullptr, 0, nullptr);
+ComputePipeline makeTracePipeline(const VulkanDevice& device) {
+    std::array<VkDescriptorType, kTraceBindingCount> bindings;
+    bindings.fill(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    bindings[kBindingParams] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    return ComputePipeline(device, std::span<const std::uint32_t>(trace_spv, std::size(trace_spv)), bindings);
 }
 
 }  // namespace vitrum

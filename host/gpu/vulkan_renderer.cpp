@@ -74,17 +74,19 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     stats.addPhase("upload", secondsSince(start));
 
     start = Clock::now();
-    TracePipeline pipeline(device);
-    pipeline.bind({&params, &nodes, &vertices, &shading, &materials, &lights, &textures, &texels, &objectMaterials,
-                   &pixels, &states, &counters});
+    ComputePipeline pipeline = makeTracePipeline(device);
+    std::array<const GpuBuffer*, kTraceBindingCount> bound{&params,    &nodes,           &vertices, &shading,
+                                                           &materials, &lights,          &textures, &texels,
+                                                           &objectMaterials, &pixels, &states, &counters};
+    pipeline.bind(bound);
     stats.addPhase("pipeline", secondsSince(start));
 
     gpu::RenderParams p = makeRenderParams(scene);
     p.counts.w = options.iterationBudget;
     const std::uint32_t tilesX = (width + tileWidth - 1) / tileWidth;
     const std::uint32_t tilesY = (height + tileHeight - 1) / tileHeight;
-    const std::uint32_t groupsX = (tileWidth + TracePipeline::kGroupSize - 1) / TracePipeline::kGroupSize;
-    const std::uint32_t groupsY = (tileHeight + TracePipeline::kGroupSize - 1) / TracePipeline::kGroupSize;
+    const std::uint32_t groupsX = (tileWidth + kTraceGroupSize - 1) / kTraceGroupSize;
+    const std::uint32_t groupsY = (tileHeight + kTraceGroupSize - 1) / kTraceGroupSize;
     auto* counterValues = counters.as<std::uint32_t>();
 
     start = Clock::now();
