@@ -41,9 +41,13 @@ bool hitsBox(vec3 boxMin, vec3 boxMax, vec3 origin, vec3 inverseDirection, float
     return enter <= leave;
 }
 
-// Starts a traversal of the ray origin + t direction, 0 < t < tMax.
-void beginTraversal(vec3 origin, vec3 direction, float tMax) {
-    st.traceOrigin = vec4(origin, 0.0);
+const uint kTraverseClosest = 0u;  // the closest hit
+const uint kTraverseAny = 1u;      // any hit (shadow rays)
+const uint kTraverseTouching = 2u; // every glass surface of another object (see onTouchingHit)
+
+// Starts a traversal of the ray origin + t direction, tMin < t < tMax.
+void beginTraversal(vec3 origin, vec3 direction, float tMin, float tMax) {
+    st.traceOrigin = vec4(origin, tMin);
     st.traceDirection = vec4(direction, tMax);
     st.stack[0] = 0u;
     st.control.w = 1u;
@@ -51,20 +55,26 @@ void beginTraversal(vec3 origin, vec3 direction, float tMax) {
 }
 
 // One step of the traversal: one triangle test or one node visit. Returns true when it is over:
-// the closest hit (or, with anyHit, some hit) is in st.traversal.z, its t in st.traceDirection.w
-// and its barycentrics in st.hitUv.zw.
-bool traversalStep(bool anyHit) {
+// the closest hit (or, for kTraverseAny, some hit) is in st.traversal.z, its t in
+// st.traceDirection.w and its barycentrics in st.hitUv.zw. kTraverseTouching keeps tMax and hands
+// every hit to onTouchingHit instead.
+bool traversalStep(uint mode) {
     vec3 origin = st.traceOrigin.xyz;
     vec3 direction = st.traceDirection.xyz;
     if (st.traversal.x < st.traversal.y) {
         uint triangle = st.traversal.x;
         st.traversal.x += 1u;
-        vec3 hit = intersectTriangle(vertices[triangle], origin, direction);
-        if (hit.x > 0.0 && hit.x < st.traceDirection.w) {
+        TriangleVertices tri = vertices[triangle];
+        vec3 hit = intersectTriangle(tri, origin, direction);
+        if (hit.x > st.traceOrigin.w && hit.x < st.traceDirection.w) {
+            if (mode == kTraverseTouching) {
+                onTouchingHit(tri, hit.x);
+                return false;
+            }
             st.traceDirection.w = hit.x;
             st.traversal.z = triangle;
             st.hitUv.zw = hit.yz;
-            if (anyHit) return true;
+            if (mode == kTraverseAny) return true;
         }
         return false;
     }

@@ -21,6 +21,12 @@ TraceState st;
 uint gNodeVisits = 0u;
 uint gTraversalOverflows = 0u;
 
+uint gTouchingInterfaces = 0u;
+
+// A surface the touching probe found: a glass surface of another object than the one hit, at
+// (nearly) the same point. Recorded once per object, at most 3.
+void onTouchingHit(TriangleVertices tri, float t);
+
 #include "bvh.glsl"
 #include "camera.glsl"
 #include "optics.glsl"
@@ -34,6 +40,7 @@ const uint kPhaseShadow = 3u;       // any-hit traversal towards light st.contro
 const uint kPhaseScatter = 4u;      // spawn reflected / refracted rays
 const uint kPhaseNextRay = 5u;      // pop a pending ray, or finish the sample
 const uint kPhaseDone = 6u;
+const uint kPhaseTouching = 7u;     // find other glass surfaces touching a glass hit
 
 uint gPrimaryRays = 0u;
 uint gShadowRays = 0u;
@@ -45,6 +52,9 @@ uint gMediumStackOverflows = 0u;
 uint gWeightCuts = 0u;
 uint gTotalInternalReflections = 0u;
 uint gAbsorbedEscapes = 0u;
+uint gInconsistentMedia = 0u;
+uint gMaxRayDepth = 0u;
+uint gMaxMediumDepth = 0u;
 
 uint rayDepth(PendingRay r) { return floatBitsToUint(r.origin.w); }
 uint mediaCount(PendingRay r) { return floatBitsToUint(r.direction.w); }
@@ -75,8 +85,22 @@ void startPrimaryRay() {
     st.sampleColour = vec4(0.0);
     st.control.y = 0u;
     gPrimaryRays += 1u;
-    beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 3.0e38);
+    beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 0.0, 3.0e38);
     st.control.x = kPhaseTrace;
+}
+
+void onTouchingHit(TriangleVertices tri, float t) {
+    uint object = floatBitsToUint(tri.v1.w);
+    if (materialModel(materials[floatBitsToUint(tri.v0.w)]) != kMaterialGlass || object == hitObject()) return;
+    uint count = st.touching.w;
+    if ((count > 0u && (st.touching.x & 0x7FFFFFFFu) == object) ||
+        (count > 1u && (st.touching.y & 0x7FFFFFFFu) == object) ||
+        (count > 2u && (st.touching.z & 0x7FFFFFFFu) == object) || count >= 3u)
+        return;
+    bool entering = dot(st.ray.direction.xyz, cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz)) < 0.0;
+    st.touching[count] = object | (entering ? 0x80000000u : 0u);
+    st.touching.w = count + 1u;
+    st.probe.x = max(st.probe.x, t);
 }
 
 // The closest-hit traversal of st.ray is over: record the hit or take the background.
@@ -117,7 +141,17 @@ void finishTrace() {
 
     uint model = materialModel(materials[hitMaterial()]);
     if (model == kMaterialGlass) {
-        st.control.x = kPhaseScatter;
+        st.touching = uvec4(0u);
+        st.probe.x = t;
+        if (params.tuning.z != 0.0) {
+            // Touching objects (lecture, "Problematic Cases"): look for other glass surfaces
+            // within the touching distance of this hit along the ray.
+            float tolerance = params.tuning.y;
+            beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, max(0.0, t - tolerance), t + tolerance);
+            st.control.x = kPhaseTouching;
+        } else {
+            st.control.x = kPhaseScatter;
+        }
         return;
     }
     // Opaque: both normals face the incoming ray.
@@ -179,7 +213,7 @@ void nextLight() {
     }
     vec3 origin = offsetRayOrigin(st.hitPosition.xyz, st.hitGeometricNormal.xyz);
     gShadowRays += 1u;
-    beginTraversal(origin, lights[index].position.xyz - origin, 1.0);
+    beginTraversal(origin, lights[index].position.xyz - origin, 0.0, 1.0);
     st.control.x = kPhaseShadow;
 }
 
@@ -236,49 +270,73 @@ void scatterOpaque(GpuMaterial m) {
     pushRay(origin, reflectDirection(d, n), weight, st.ray.media, mediaCount(st.ray), false, true);
 }
 
+// The medium stack, written without loops: every loop iteration counts against lavapipe's limit.
+// Removes the innermost entry of `object` (normally the top); a ray leaving an object it is not
+// inside (an open or badly wound mesh) keeps its stack, and that is counted.
+void leaveMedium(inout uvec4 media, inout uint count, uint object) {
+    uint found = count;
+    if (count > 0u && media[0] == object) found = 0u;
+    if (count > 1u && media[1] == object) found = 1u;
+    if (count > 2u && media[2] == object) found = 2u;
+    if (count > 3u && media[3] == object) found = 3u;
+    if (found == count) {
+        gInconsistentMedia += 1u;
+        return;
+    }
+    if (found <= 0u && 1u < count) media[0] = media[1];
+    if (found <= 1u && 2u < count) media[1] = media[2];
+    if (found <= 2u && 3u < count) media[2] = media[3];
+    count -= 1u;
+}
+
+void enterMedium(inout uvec4 media, inout uint count, uint object) {
+    if (count >= kMaxMediumDepth) {
+        gMediumStackOverflows += 1u;
+        return;
+    }
+    media[count] = object;
+    count += 1u;
+}
+
+float ior(uvec4 media, uint count) {
+    return count == 0u ? params.background.w : materials[objectMaterial[media[count - 1u]]].attenuation.w;
+}
+
 // Glass: the ray enters or leaves object k, decided by the geometric normal of the consistently
-// wound mesh; the medium stack says what is on the other side.
+// wound mesh; the medium stack says what is on the other side. Surfaces of other glass objects
+// touching the hit (st.touching) make one interface with it: the ray leaves, then enters, so
+// glass touching glass is glass -> glass (lecture: P2 is 1.5 -> 1.5, never 1.5 -> 1 -> 1.5).
 void scatterGlass(GpuMaterial m) {
     vec3 d = st.ray.direction.xyz;
     vec3 ng = st.hitGeometricNormal.xyz;
-    uint object = hitObject();
     bool entering = dot(d, ng) < 0.0;
     uvec4 media = st.ray.media;
     uint count = mediaCount(st.ray);
-    float n1 = mediumIor(st.ray);
-    float n2;
-    if (entering) {
-        if (count < kMaxMediumDepth) {
-            media[count] = object;
-            count += 1u;
-        } else {
-            gMediumStackOverflows += 1u;
-        }
-        n2 = m.attenuation.w;
-    } else {
-        // Remove the innermost entry of this object (normally the top). Written without loops:
-        // every loop iteration counts against lavapipe's limit.
-        uint found = count;
-        if (count > 0u && media[0] == object) found = 0u;
-        if (count > 1u && media[1] == object) found = 1u;
-        if (count > 2u && media[2] == object) found = 2u;
-        if (count > 3u && media[3] == object) found = 3u;
-        if (found < count) {
-            if (found <= 0u && 1u < count) media[0] = media[1];
-            if (found <= 1u && 2u < count) media[1] = media[2];
-            if (found <= 2u && 3u < count) media[2] = media[3];
-            count -= 1u;
-        }
-        n1 = m.attenuation.w;
-        n2 = count == 0u ? params.background.w : materials[objectMaterial[media[count - 1u]]].attenuation.w;
-    }
+    uint touchingCount = st.touching.w;
+    if (touchingCount > 0u) gTouchingInterfaces += 1u;
+    // Leaving first ...
+    if (!entering) leaveMedium(media, count, hitObject());
+    if (touchingCount > 0u && (st.touching.x & 0x80000000u) == 0u) leaveMedium(media, count, st.touching.x);
+    if (touchingCount > 1u && (st.touching.y & 0x80000000u) == 0u) leaveMedium(media, count, st.touching.y);
+    if (touchingCount > 2u && (st.touching.z & 0x80000000u) == 0u) leaveMedium(media, count, st.touching.z);
+    // ... then entering.
+    if (entering) enterMedium(media, count, hitObject());
+    if (touchingCount > 0u && (st.touching.x & 0x80000000u) != 0u) enterMedium(media, count, st.touching.x & 0x7FFFFFFFu);
+    if (touchingCount > 1u && (st.touching.y & 0x80000000u) != 0u) enterMedium(media, count, st.touching.y & 0x7FFFFFFFu);
+    if (touchingCount > 2u && (st.touching.z & 0x80000000u) != 0u) enterMedium(media, count, st.touching.z & 0x7FFFFFFFu);
+    gMaxMediumDepth = max(gMaxMediumDepth, count);
+
+    float n1 = entering ? mediumIor(st.ray) : m.attenuation.w;
+    float n2 = entering && touchingCount == 0u ? m.attenuation.w : ior(media, count);
     vec3 facing = entering ? ng : -ng;
     vec3 n = entering ? st.hitNormal.xyz : -st.hitNormal.xyz;
     if (dot(n, d) >= 0.0) n = facing;  // a shading normal on the wrong side: use the true one
     vec3 p = st.hitPosition.xyz;
+    // The transmitted ray starts beyond every surface of the interface.
+    vec3 through = touchingCount == 0u ? p : st.ray.origin.xyz + st.probe.x * d;
     if (n1 == n2) {
         // Index-matched: no optical interface; the same ray goes on with the new stack.
-        pushRay(offsetRayOrigin(p, -facing), d, st.ray.weight.xyz, media, count, true, false);
+        pushRay(offsetRayOrigin(through, -facing), d, st.ray.weight.xyz, media, count, true, false);
         return;
     }
     float eta = n1 / n2;
@@ -288,8 +346,8 @@ void scatterGlass(GpuMaterial m) {
     if (cos2t < 0.0) gTotalInternalReflections += 1u;
     vec3 w = st.ray.weight.xyz;
     if (cos2t >= 0.0)
-        pushRay(offsetRayOrigin(p, -facing), refractDirection(d, n, eta, cos2t), w * (1.0 - r), media, count, false,
-                false);
+        pushRay(offsetRayOrigin(through, -facing), refractDirection(d, n, eta, cos2t), w * (1.0 - r), media, count,
+                false, false);
     pushRay(offsetRayOrigin(p, facing), reflectDirection(d, n), w * r, st.ray.media, mediaCount(st.ray), false, true);
 }
 
@@ -309,7 +367,8 @@ void nextRay() {
     }
     st.control.y -= 1u;
     st.ray = st.pending[st.control.y];
-    beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 3.0e38);
+    gMaxRayDepth = max(gMaxRayDepth, rayDepth(st.ray));
+    beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 0.0, 3.0e38);
     st.control.x = kPhaseTrace;
 }
 
@@ -356,16 +415,17 @@ void main() {
     while (st.control.x != kPhaseDone && steps < budget) {
         steps += 1u;
         uint phase = st.control.x;
-        if (phase == kPhaseTrace || phase == kPhaseShadow) {
-            bool anyHit = phase == kPhaseShadow;
+        if (phase == kPhaseTrace || phase == kPhaseShadow || phase == kPhaseTouching) {
+            uint mode = phase == kPhaseShadow ? kTraverseAny : (phase == kPhaseTouching ? kTraverseTouching : kTraverseClosest);
             bool over = false;
             while (!over && steps < budget) {
                 steps += 1u;
-                over = traversalStep(anyHit);
+                over = traversalStep(mode);
             }
             if (!over) break;
-            if (anyHit) finishShadow();
-            else finishTrace();
+            if (phase == kPhaseShadow) finishShadow();
+            else if (phase == kPhaseTrace) finishTrace();
+            else st.control.x = kPhaseScatter;
         } else {
             shadingStep();
         }
@@ -396,4 +456,8 @@ void main() {
     addStat(kStatWeightCuts, gWeightCuts);
     addStat(kStatTotalInternalReflections, gTotalInternalReflections);
     addStat(kStatAbsorbedEscapes, gAbsorbedEscapes);
+    addStat(kStatTouchingInterfaces, gTouchingInterfaces);
+    addStat(kStatInconsistentMedia, gInconsistentMedia);
+    if (gMaxRayDepth != 0u) atomicMax(stats[kStatMaxRayDepth], gMaxRayDepth);
+    if (gMaxMediumDepth != 0u) atomicMax(stats[kStatMaxMediumDepth], gMaxMediumDepth);
 }

@@ -38,6 +38,10 @@ void addCounters(RenderStats& stats, const std::uint32_t* counters) {
     stats.totalInternalReflections += counters[gpu::kStatTotalInternalReflections];
     stats.absorbedEscapes += counters[gpu::kStatAbsorbedEscapes];
     stats.loopSteps += counters[gpu::kStatTraversalSteps];
+    stats.touchingInterfaces += counters[gpu::kStatTouchingInterfaces];
+    stats.limits.inconsistentMedia += counters[gpu::kStatInconsistentMedia];
+    stats.maxRayDepth = std::max<std::uint64_t>(stats.maxRayDepth, counters[gpu::kStatMaxRayDepth]);
+    stats.maxMediumDepth = std::max<std::uint64_t>(stats.maxMediumDepth, counters[gpu::kStatMaxMediumDepth]);
     stats.maxPixelLoopSteps = std::max<std::uint64_t>(stats.maxPixelLoopSteps, counters[gpu::kStatMaxPixelSteps]);
 }
 
@@ -83,6 +87,14 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
 
     gpu::RenderParams p = makeRenderParams(scene);
     p.counts.w = options.iterationBudget;
+    // Surfaces of different glass objects within 1e-5 of the scene's diagonal touch (the same
+    // tolerance as the CPU reference); with fewer than two glass objects nothing can touch.
+    if (!bvh.nodes.empty())
+        p.tuning.y = float(1e-5 * glm::length(glm::dvec3(bvh.nodes[0].boundsMax) - glm::dvec3(bvh.nodes[0].boundsMin)));
+    std::size_t glassObjects = 0;
+    for (std::uint32_t material : packed.objectMaterials)
+        if (scene.materials[material].model == MaterialModel::Glass) ++glassObjects;
+    p.tuning.z = glassObjects >= 2 ? 1.0f : 0.0f;
     const std::uint32_t tilesX = (width + tileWidth - 1) / tileWidth;
     const std::uint32_t tilesY = (height + tileHeight - 1) / tileHeight;
     const std::uint32_t groupsX = (tileWidth + kTraceGroupSize - 1) / kTraceGroupSize;

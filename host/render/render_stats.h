@@ -26,6 +26,7 @@ struct LimitCounts {
     std::uint64_t rayStackOverflow = 0;      // branches dropped: pending-ray stack full
     std::uint64_t mediumStackOverflow = 0;   // media not recorded: medium stack full
     std::uint64_t weightCuts = 0;            // branches skipped by min_weight
+    std::uint64_t inconsistentMedia = 0;     // rays leaving an object they were not inside
 };
 
 struct RenderStats {
@@ -38,6 +39,9 @@ struct RenderStats {
     std::uint64_t nodeVisits = 0;
     std::uint64_t totalInternalReflections = 0;
     std::uint64_t absorbedEscapes = 0;
+    std::uint64_t touchingInterfaces = 0;  // glass hits merged with touching surfaces of other objects
+    std::uint64_t maxRayDepth = 0;         // deepest ray traced (primary = 0)
+    std::uint64_t maxMediumDepth = 0;      // most media one ray was inside
     std::uint64_t loopSteps = 0;          // GPU: steps of trace.comp's loop, all pixels
     std::uint64_t maxPixelLoopSteps = 0;  // GPU: most steps one pixel needed, over all its dispatches  // rays that left the scene inside an absorbing medium
 

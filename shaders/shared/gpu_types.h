@@ -107,7 +107,9 @@ struct RenderParams {
     uvec4 tile;        // tile origin x, tile origin y, tile width, tile height
     uvec4 pass;        // x = 1 on the first dispatch of a tile (start fresh), 0 when resuming;
                        // y = columns of the stratified sample grid (rows = spp / columns)
-    vec4 tuning;       // x = min weight
+    vec4 tuning;       // x = min weight, y = distance within which surfaces touch (1e-5 x scene
+                       // diagonal), z = 1 when the scene has two or more glass objects (so
+                       // surfaces of different objects can touch), else 0
 };
 
 // ---- Per-invocation trace state (storage buffer, one per pixel of a tile) ----------------------
@@ -128,7 +130,7 @@ struct PendingRay {
 struct TraceState {
     PendingRay ray;                      // the ray being traced (or shaded)
     PendingRay pending[kRayStackSize];   // rays waiting to be traced
-    vec4 traceOrigin;                    // the ray of the current traversal (primary or shadow);
+    vec4 traceOrigin;                    // the ray of the current traversal; .w = tMin
     vec4 traceDirection;                 // .w = closest t so far (the traversal's tMax)
     vec4 hitPosition;                    // .w = hit t of `ray`
     vec4 hitNormal;                      // shading normal, .w = material (uint bits)
@@ -138,6 +140,9 @@ struct TraceState {
     vec4 accumulated;                    // sum of finished samples; .w = samples done (uint bits)
     uvec4 control;                       // phase, pending rays, current light, traversal stack size
     uvec4 traversal;                     // leaf cursor, leaf end, closest triangle, pixel's steps
+    uvec4 touching;                      // other objects' glass surfaces at the hit: object | entering
+                                         // << 31, up to 3; .w = how many
+    vec4 probe;                          // .x = farthest touching surface's t
     uint stack[kTraversalStackSize];     // BVH nodes still to visit
 };
 
@@ -160,7 +165,11 @@ VITRUM_CONST uint kStatWeightCuts = 12u;         // branches skipped by min_weig
 VITRUM_CONST uint kStatTotalInternalReflections = 13u;
 VITRUM_CONST uint kStatAbsorbedEscapes = 14u;    // rays leaving the scene inside an absorbing medium
 VITRUM_CONST uint kStatMaxPixelSteps = 15u;      // most loop steps one pixel needed (atomicMax)
-VITRUM_CONST uint kStatCount = 16u;
+VITRUM_CONST uint kStatMaxRayDepth = 16u;        // deepest ray traced (atomicMax)
+VITRUM_CONST uint kStatMaxMediumDepth = 17u;     // most media one ray was inside (atomicMax)
+VITRUM_CONST uint kStatTouchingInterfaces = 18u; // glass hits where other objects' surfaces touch
+VITRUM_CONST uint kStatInconsistentMedia = 19u;  // a ray left an object it was not inside
+VITRUM_CONST uint kStatCount = 20u;
 
 // ---- Sampling -------------------------------------------------------------------------------
 // The integer hash both backends use for jitter, so that their samples are bit-identical:
