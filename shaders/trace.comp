@@ -435,7 +435,8 @@ void main() {
     if (st.control.x == kPhaseDone) {
         atomicMax(stats[kStatMaxPixelSteps], st.traversal.w);
         pixels[pixel.y * params.image.x + pixel.x] = vec4(st.accumulated.xyz / float(params.image.z), 1.0);
-        if (params.pass.x == 0u) states[slot].control.x = kPhaseDone;
+        // Later dispatches of this tile must skip the pixel (its slot may hold another tile's state).
+        states[slot].control.x = kPhaseDone;
     } else {
         // Out of budget: keep everything for the next dispatch. A loop that stopped short of both
         // the end and the budget was stopped by the driver: count it, never hide it.

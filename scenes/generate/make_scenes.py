@@ -127,6 +127,18 @@ def box(name, lo, hi, material):
     return m
 
 
+def box_shell(name, lo, hi, thickness, material):
+    """A closed box-shaped shell: the solid between an outer box and an inner box `thickness`
+    inside it (the inner faces wound to face the cavity). A room with glass walls."""
+    m = box(name, lo, hi, material)
+    inner = box(name + "_cavity", tuple(c + thickness for c in lo), tuple(c - thickness for c in hi), material)
+    inner.flip()
+    offset = len(m.vertices)
+    m.vertices += inner.vertices
+    m.faces += [(tuple(i + offset for i in v), n, mat) for v, n, mat in inner.faces]
+    return m
+
+
 def uv_sphere(name, radius, segments, rings, material):
     """Latitude-longitude sphere with smooth normals: 2 * segments * (rings - 1) triangles."""
     m = Mesh(name)
@@ -352,7 +364,7 @@ def check_camera(scene_name, scene, meshes_by_file):
     yc = cross(zc, xc)
     lo, hi = [math.inf, math.inf], [-math.inf, -math.inf]
     for obj in scene["objects"]:
-        if "floor" in obj["obj"]:
+        if "floor" in obj["obj"] or "room" in obj["obj"]:  # surroundings, not subjects
             continue
         for m in meshes_by_file[os.path.basename(obj["obj"])]:
             for p in m.vertices:
@@ -428,6 +440,8 @@ def main():
         "Unit sphere (radius 1, centre at the origin), 48 x 22 latitude-longitude, smooth normals.")
     obj("icosphere5.obj", "glass.mtl", [icosphere("icosphere", 1.0, 5, "surface")],
         "Unit icosphere (radius 1, centre at the origin), level 5 subdivision, smooth normals.")
+    obj("glass_room.obj", "glass.mtl", [box_shell("room", (-4.0, -4.0, -4.0), (4.0, 4.0, 4.0), 0.2, "surface")],
+        "A closed room with glass walls: the shell between [-4, 4]^3 and [-3.8, 3.8]^3.")
     obj("cube.obj", "glass.mtl", [box("cube", (-0.5, -0.5, -0.5), (0.5, 0.5, 0.5), "surface")],
         "Unit cube, [-0.5, 0.5]^3.")
     obj("block.obj", "glass.mtl", [box("block", (-0.6, -0.35, 0.0), (0.6, 0.35, 1.6), "surface")],
@@ -554,13 +568,16 @@ def main():
             "render": render,
         },
         "loop_limit": {
-            "about": "A clear glass icosphere of 20,480 triangles filling most of a 64x48 image, max_depth 10: "
-                        "up to 1023 rays per pixel, each walking the BVH, far more than 65,535 loop iterations.",
-            "camera": camera([0.0, -2.7, 0.0], [0.0, 0.0, 0.0], 45, 64, 48),
-            "lights": [{"position": [3.0, -4.0, 5.0], "colour": [1.0, 1.0, 1.0]}],
+            "about": "A clear glass icosphere of 20,480 triangles inside a closed room with glass walls, seen "
+                        "from inside the room over a checker floor, 32x24 at 4 spp, max_depth 10: nearly every ray "
+                        "meets glass, so a pixel's trees have thousands of rays, each walking the BVH: far more "
+                        "than 65,535 loop iterations.",
+            "camera": camera([0.0, -2.7, 0.0], [0.0, 0.0, 0.0], 45, 32, 24),
+            "lights": [{"position": [1.5, -2.0, 2.5], "colour": [1.0, 1.0, 1.0]}],
             "background": {"colour": [0.6, 0.65, 0.7]},
-            "objects": [shape("icosphere5.obj", "clear_glass.mtl")],
-            "render": render,
+            "objects": [shape("icosphere5.obj", "clear_glass.mtl"), shape("glass_room.obj", "clear_glass.mtl"),
+                        {"obj": "meshes/checker_floor.obj", "transform": {"scale": 0.9, "translate": [0, 0, -1.2]}}],
+            "render": {"spp": 4, "max_depth": 10, "fresnel": "schlick"},
         },
     }
     scenes["one_box"] = json.loads(json.dumps(scenes["touching_cubes"]))

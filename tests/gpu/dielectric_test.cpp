@@ -1,0 +1,132 @@
+// Glass, water and plastic: the ray tree with its medium stack, GPU against CPU on every
+// dielectric scene at depth 10 with both Fresnel models, touching media, and the loop limit.
+#include "gpu_test_support.h"
+
+namespace vitrum::testing {
+namespace {
+
+Scene loadSized(const std::string& scene, std::uint32_t width, std::uint32_t height, FresnelModel fresnel) {
+    Scene s = loadScene(sourcePath(scene));
+    s.camera.width = width;
+    s.camera.height = height;
+    s.settings.maxDepth = 10;
+    s.settings.fresnel = fresnel;
+    return s;
+}
+
+struct DielectricCase {
+    const char* scene;
+    FresnelModel fresnel;
+};
+
+class DielectricScene : public ::testing::TestWithParam<DielectricCase> {};
+
+TEST_P(DielectricScene, GpuMatchesReferenceAtDepth10) {
+    RenderPair r = renderBoth(loadSized(GetParam().scene, 96, 72, GetParam().fresnel));
+    expectImagesMatch(r);
+    EXPECT_EQ(r.gpuStats.limits.loopLimitSuspected, 0u);
+    EXPECT_GT(r.gpuStats.rays.refraction, 0u);
+    EXPECT_GT(r.gpuStats.rays.reflection, 0u);
+}
+
+std::string caseName(const ::testing::TestParamInfo<DielectricCase>& info) {
+    std::string name = std::filesystem::path(info.param.scene).stem().string();
+    name += info.param.fresnel == FresnelModel::Exact ? "_exact" : "_schlick";
+    std::erase_if(name, [](char c) { return !std::isalnum(static_cast<unsigned char>(c)) && c != '_'; });
+    return name;
+}
+
+const char* kDielectricScenes[] = {"scenes/demo.json",           "scenes/touching_cubes.json",
+                                   "scenes/one_box.json",        "scenes/water_glass.json",
+                                   "scenes/prism.json",          "scenes/plastics_green_glass.json",
+                                   "scenes/course/geospheres_5x5_glass.json"};
+
+std::vector<DielectricCase> allCases() {
+    std::vector<DielectricCase> cases;
+    for (const char* scene : kDielectricScenes)
+        for (FresnelModel f : {FresnelModel::Schlick, FresnelModel::Exact}) cases.push_back({scene, f});
+    return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, DielectricScene, ::testing::ValuesIn(allCases()), caseName);
+
+// Lecture, "Problematic Cases": touching glass cubes are one interface glass -> glass at the
+// shared face (P2: 1.5 to 1.5), so they render like one box of the same outer shape. The only
+// difference allowed is rounding where the ray restarts beyond the shared face.
+TEST(TouchingMedia, TouchingGlassCubesMatchOneBoxOnBothBackends) {
+    RenderPair touching = renderBoth(loadSized("scenes/touching_cubes.json", 160, 120, FresnelModel::Exact));
+    RenderPair oneBox = renderBoth(loadSized("scenes/one_box.json", 160, 120, FresnelModel::Exact));
+    for (auto [a, b] : {std::pair{&touching.gpu, &oneBox.gpu}, std::pair{&touching.cpu, &oneBox.cpu}}) {
+        ImageDiff d = diffImages(*a, *b);
+        EXPECT_LE(d.shareOver1of255, 0.001) << "psnr " << d.psnr;
+        EXPECT_LE(d.maxAbsError, 0.02);
+    }
+    EXPECT_GT(touching.gpuStats.touchingInterfaces, 0u);
+    EXPECT_EQ(oneBox.gpuStats.touchingInterfaces, 0u);
+    // Leaving one cube and entering the other never stacks both: one medium at a time.
+    EXPECT_EQ(touching.gpuStats.maxMediumDepth, 1u);
+    EXPECT_EQ(touching.gpuStats.limits.mediumStackOverflow, 0u);
+}
+
+// Without the merged interface the shared face would be glass -> air -> glass: two extra
+// Fresnel reflections (R = 0.04 at normal incidence each way) that one box does not have. Seen
+// head-on through both cubes, the centre pixel must therefore be the one box's value, not
+// (1 - 0.04)^2 = 0.92 of it.
+TEST(TouchingMedia, SharedFaceAddsNoReflectionHeadOn) {
+    Scene touching = loadScene(sourcePath("scenes/touching_cubes.json"));
+    Scene oneBox = loadScene(sourcePath("scenes/one_box.json"));
+    for (Scene* s : {&touching, &oneBox}) {
+        s->camera = {.from = {-6, 0, 0.51f}, .at = {0, 0, 0.51f}, .up = {0, 0, 1}, .fovY = 10, .width = 9, .height = 9};
+        s->lights.clear();
+        s->background.colour = glm::vec3(1.0f);
+        s->settings.fresnel = FresnelModel::Exact;
+    }
+    RenderPair a = renderBoth(touching);
+    RenderPair b = renderBoth(oneBox);
+    glm::vec3 ta = a.gpu.at(4, 4), tb = b.gpu.at(4, 4);
+    EXPECT_NEAR(ta.x, tb.x, 1e-4);
+    EXPECT_GT(tb.x, 0.5f);
+    EXPECT_NEAR(a.cpu.at(4, 4).x, b.cpu.at(4, 4).x, 1e-4);
+}
+
+TEST(TotalInternalReflection, PrismShowsTirOnBothBackends) {
+    RenderPair r = renderBoth(loadSized("scenes/prism.json", 96, 72, FresnelModel::Schlick));
+    expectImagesMatch(r);
+    EXPECT_GT(r.gpuStats.totalInternalReflections, 0u);
+    EXPECT_GT(r.cpuStats.totalInternalReflections, 0u);
+}
+
+TEST(NestedMedia, WaterInGlassKeepsTheStackConsistent) {
+    RenderPair r = renderBoth(loadSized("scenes/water_glass.json", 64, 48, FresnelModel::Exact));
+    expectImagesMatch(r);
+    EXPECT_EQ(r.gpuStats.limits.mediumStackOverflow, 0u);
+    EXPECT_GE(r.gpuStats.maxMediumDepth, 1u);
+    EXPECT_GT(r.gpuStats.touchingInterfaces, 0u);  // water meets the glass's inner wall
+}
+
+// DEVELOPERS.md: lavapipe silently ends loops after 65,535 iterations per invocation. The
+// loop-limit scene needs far more per pixel; the renderer splits the work over dispatches.
+TEST(LoopLimit, SceneNeedingMoreThan65535IterationsMatchesReference) {
+    Scene scene = loadScene(sourcePath("scenes/loop_limit.json"));
+    RenderPair r = renderBoth(scene);
+    EXPECT_GT(r.gpuStats.maxPixelLoopSteps, 65535u) << "the scene no longer needs more than the driver's limit";
+    EXPECT_GT(r.gpuStats.dispatches, 1u);
+    EXPECT_EQ(r.gpuStats.limits.loopLimitSuspected, 0u);
+    expectImagesMatch(r);
+    std::cout << "loop-limit scene: " << r.gpuStats.dispatches << " dispatches, at most "
+              << r.gpuStats.maxPixelLoopSteps << " loop steps for one pixel\n";
+}
+
+// With a budget above the driver's limit, lavapipe cuts loops: the kernel notices (the loop
+// ended with work left and budget left), counts it, and the next dispatch resumes the pixel,
+// so the image is still right.
+TEST(LoopLimit, DriverLimitIsDetectedAndRecovered) {
+    if (testDevice().name().find("llvmpipe") == std::string::npos) GTEST_SKIP() << "only lavapipe has the limit";
+    Scene scene = loadScene(sourcePath("scenes/loop_limit.json"));
+    RenderPair r = renderBoth(scene, VulkanRenderOptions{.iterationBudget = 1u << 20});
+    EXPECT_GT(r.gpuStats.limits.loopLimitSuspected, 0u);
+    expectImagesMatch(r);
+}
+
+}  // namespace
+}  // namespace vitrum::testing
