@@ -11,6 +11,7 @@
 #include "common/error.h"
 #include "gpu/vulkan_device.h"
 #include "image/image_diff.h"
+#include "render/packed_scene.h"
 #include "scene/scene_loader.h"
 
 namespace vitrum {
@@ -67,6 +68,14 @@ int infoCommand(int argc, char** argv, int first) {
         if (m.diffuseTexture >= 0) std::printf("  map_Kd %s", scene.textures[m.diffuseTexture].path.filename().c_str());
         std::printf("\n");
     }
+    // Media: each closed object whose material is glass encloses one (docs/render-model-decisions.md).
+    PackedScene packed = packScene(scene, bvh);
+    std::size_t glassObjects = 0;
+    for (std::uint32_t material : packed.objectMaterials)
+        if (scene.materials[material].model == MaterialModel::Glass) ++glassObjects;
+    std::printf("media: %zu glass objects%s; medium stack holds %u, pending-ray stack %u (exact to depth %u)\n",
+                glassObjects, glassObjects >= 2 ? " (touching surfaces are merged into one interface)" : "",
+                gpu::kMaxMediumDepth, gpu::kRayStackSize, gpu::kRayStackSize - 1);
     std::printf("lights: %zu\n", scene.lights.size());
     for (const PointLight& l : scene.lights)
         std::printf("  at (%g, %g, %g), colour (%g, %g, %g)%s\n", l.position.x, l.position.y, l.position.z, l.colour.x,
