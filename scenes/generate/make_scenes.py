@@ -428,6 +428,8 @@ def main():
         "phong_gold.mtl": ("Shiny yellow (opaque dielectric).",
                            mtl_entry("surface", 3, ka=(0.02, 0.02, 0.0), kd=(0.85, 0.6, 0.1), ks=(0.5, 0.5, 0.5),
                                      ns=25, ni=1.5)),
+        "air_bubble.mtl": ("Air enclosed in glass: a glass-model medium of IOR 1 and no absorption.",
+                           mtl_entry("surface", 4, ks=(1, 1, 1), ni=1.0)),
         "lambert_blue.mtl": ("Matte blue.", mtl_entry("surface", 2, ka=(0.0, 0.0, 0.03), kd=(0.1, 0.2, 0.75))),
     }
     for name, (comment, entry) in overrides.items():
@@ -533,6 +535,17 @@ def main():
                        {"position": [-4.0, -4.0, 4.0], "colour": [0.3, 0.3, 0.35]}],
             "background": {"colour": [0.25, 0.3, 0.38]},
             "objects": [floor, {"obj": "meshes/water_glass.obj", "transform": {"translate": [0.0, 0.0, lift]}}],
+            "render": render,
+        },
+        "bubble": {
+            "about": "An air bubble (a sphere of IOR 1) inside a tinted glass block: nested media, glass -> air -> "
+                        "glass, with Beer-Lambert absorption only in the glass around the bubble.",
+            "camera": camera([2.2, -5.5, 2.6], [0.0, 0.0, 0.8], 36),
+            "lights": [{"position": [3.0, -6.0, 6.0], "colour": [0.9, 0.9, 0.9]}],
+            "background": {"colour": [0.3, 0.32, 0.36]},
+            "objects": [floor,
+                        shape("block.obj", "tinted_glass.mtl", scale=1.2, translate=[0.0, 0.0, lift]),
+                        shape("sphere.obj", "air_bubble.mtl", scale=0.35, translate=[0.0, 0.0, 1.0])],
             "render": render,
         },
         "prism": {

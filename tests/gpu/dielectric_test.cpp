@@ -39,6 +39,7 @@ std::string caseName(const ::testing::TestParamInfo<DielectricCase>& info) {
 const char* kDielectricScenes[] = {"scenes/demo.json",           "scenes/touching_cubes.json",
                                    "scenes/one_box.json",        "scenes/water_glass.json",
                                    "scenes/prism.json",          "scenes/plastics_green_glass.json",
+                                   "scenes/bubble.json",
                                    "scenes/course/geospheres_5x5_glass.json"};
 
 std::vector<DielectricCase> allCases() {
@@ -87,6 +88,30 @@ TEST(TouchingMedia, SharedFaceAddsNoReflectionHeadOn) {
     EXPECT_NEAR(ta.x, tb.x, 1e-4);
     EXPECT_GT(tb.x, 0.5f);
     EXPECT_NEAR(a.cpu.at(4, 4).x, b.cpu.at(4, 4).x, 1e-4);
+}
+
+TEST(NestedMedia, AirBubbleInGlassBlockIsTwoMediaDeep) {
+    RenderPair r = renderBoth(loadSized("scenes/bubble.json", 96, 72, FresnelModel::Exact));
+    expectImagesMatch(r);
+    EXPECT_EQ(r.gpuStats.maxMediumDepth, 2u);  // block, then bubble inside it
+    EXPECT_EQ(r.gpuStats.limits.inconsistentMedia, 0u);
+}
+
+// min_weight (render model): a branch whose path weight is below it in every channel is skipped
+// and counted; both backends skip the same branches.
+TEST(MinWeight, CutOffSkipsBranchesOnBothBackends) {
+    Scene exact = loadSized("scenes/demo.json", 96, 72, FresnelModel::Schlick);
+    Scene cut = exact;
+    cut.settings.minWeight = 0.05f;
+    RenderPair full = renderBoth(exact);
+    RenderPair pruned = renderBoth(cut);
+    expectImagesMatch(pruned);
+    EXPECT_GT(pruned.gpuStats.limits.weightCuts, 0u);
+    EXPECT_GT(pruned.cpuStats.limits.weightCuts, 0u);
+    EXPECT_EQ(full.gpuStats.limits.weightCuts, 0u);
+    EXPECT_LT(pruned.gpuStats.rays.total(), full.gpuStats.rays.total());
+    // What is skipped carried less than 5% of the light along each branch: the image barely moves.
+    EXPECT_LT(diffImages(pruned.gpu, full.gpu).meanAbsError, 0.01);
 }
 
 TEST(TotalInternalReflection, PrismShowsTirOnBothBackends) {
