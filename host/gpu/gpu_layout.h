@@ -10,7 +10,7 @@ static_assert(sizeof(TriangleShading) == 80);
 static_assert(sizeof(GpuMaterial) == 64);
 static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(GpuLight) == 32);
-static_assert(sizeof(RenderParams) == 160);
+static_assert(sizeof(RenderParams) == 192);
 }  // namespace vitrum::gpu
 
 namespace vitrum::gpu {

@@ -75,6 +75,8 @@ gpu::RenderParams makeRenderParams(const Scene& scene) {
     p.counts = glm::uvec4(scene.lights.size(), std::uint32_t(s.fresnel), scene.textures.size(), 0);
     p.pass = glm::uvec4(1, sampleGridColumns(s.samplesPerPixel), 0, 0);
     p.tuning = glm::vec4(s.minWeight, 0.0f, 0.0f, 0.0f);
+    p.environment = glm::uvec4(gpu::kBackgroundConstant, gpu::kFilterBilinear, 0, 0);
+    p.offsets = glm::vec4(1.0f / 32.0f, 1.0f / 65536.0f, 0.0f, 0.0f);  // Waechter and Binder's constants
     return p;
 }
 

@@ -110,7 +110,17 @@ struct RenderParams {
     vec4 tuning;       // x = min weight, y = distance within which surfaces touch (1e-5 x scene
                        // diagonal), z = 1 when the scene has two or more glass objects (so
                        // surfaces of different objects can touch), else 0
+    uvec4 environment; // x = background kind (kBackground*), y = filter (kFilter*), z = texture of
+                       // the spherical map or of the cube's +x face (then -x, +y, -y, +z, -z)
+    vec4 offsets;      // ray-origin offsets (Waechter and Binder) scaled to the scene: x = radius of
+                       // the region around the origin where offsets are absolute, y = that offset
 };
+
+VITRUM_CONST uint kBackgroundConstant = 0u;
+VITRUM_CONST uint kBackgroundSpherical = 1u;
+VITRUM_CONST uint kBackgroundCube = 2u;
+VITRUM_CONST uint kFilterBilinear = 0u;
+VITRUM_CONST uint kFilterNearest = 1u;
 
 // ---- Per-invocation trace state (storage buffer, one per pixel of a tile) ----------------------
 // lavapipe stops any shader loop after 65,535 iterations, silently. trace.comp therefore runs
