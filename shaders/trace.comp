@@ -84,6 +84,12 @@ void startPrimaryRay() {
     st.ray.media = uvec4(0u);
     st.sampleColour = vec4(0.0);
     st.control.y = 0u;
+    if (params.image.w == 0u) {
+        // max_depth 0: not even the primary ray is traced (render model); the sample is black.
+        gDepthLimitHits += 1u;
+        st.control.x = kPhaseNextRay;
+        return;
+    }
     gPrimaryRays += 1u;
     beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 0.0, 3.0e38);
     st.control.x = kPhaseTrace;
@@ -95,8 +101,12 @@ void onTouchingHit(TriangleVertices tri, float t) {
     uint count = st.touching.w;
     if ((count > 0u && (st.touching.x & 0x7FFFFFFFu) == object) ||
         (count > 1u && (st.touching.y & 0x7FFFFFFFu) == object) ||
-        (count > 2u && (st.touching.z & 0x7FFFFFFFu) == object) || count >= 3u)
+        (count > 2u && (st.touching.z & 0x7FFFFFFFu) == object))
         return;
+    if (count >= 3u) {
+        gMediumStackOverflows += 1u;  // a fourth touching object: ignored, but never silently
+        return;
+    }
     bool entering = dot(st.ray.direction.xyz, cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz)) < 0.0;
     st.touching[count] = object | (entering ? 0x80000000u : 0u);
     st.touching.w = count + 1u;

@@ -114,6 +114,19 @@ TEST(MinWeight, CutOffSkipsBranchesOnBothBackends) {
     EXPECT_LT(diffImages(pruned.gpu, full.gpu).meanAbsError, 0.01);
 }
 
+// Render model: a ray is traced only while its depth is below max_depth, so max_depth 0 traces
+// nothing at all and every pixel is black.
+TEST(DepthLimit, MaxDepthZeroTracesNothingOnBothBackends) {
+    Scene scene = loadSized("scenes/demo.json", 16, 12, FresnelModel::Schlick);
+    scene.settings.maxDepth = 0;
+    RenderPair r = renderBoth(scene);
+    for (const Image* image : {&r.gpu, &r.cpu})
+        for (const glm::vec3& p : image->pixels) ASSERT_EQ(p, glm::vec3(0.0f));
+    EXPECT_EQ(r.gpuStats.rays.total(), 0u);
+    EXPECT_EQ(r.cpuStats.rays.total(), 0u);
+    EXPECT_EQ(r.gpuStats.limits.depthLimit, 16u * 12u);
+}
+
 TEST(TotalInternalReflection, PrismShowsTirOnBothBackends) {
     RenderPair r = renderBoth(loadSized("scenes/prism.json", 96, 72, FresnelModel::Schlick));
     expectImagesMatch(r);
