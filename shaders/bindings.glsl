@@ -10,7 +10,7 @@ layout(std430, set = 0, binding = 3) readonly buffer Shading { TriangleShading s
 layout(std430, set = 0, binding = 4) readonly buffer Materials { GpuMaterial materials[]; };
 layout(std430, set = 0, binding = 5) readonly buffer Lights { GpuLight lights[]; };
 layout(std430, set = 0, binding = 6) readonly buffer Textures { TextureInfo textures[]; };
-layout(std430, set = 0, binding = 7) readonly buffer Texels { vec4 texels[]; };
+layout(std430, set = 0, binding = 7) readonly buffer Texels { float texels[]; };  // RGB, packed
 layout(std430, set = 0, binding = 8) readonly buffer ObjectMaterials { uint objectMaterial[]; };
 layout(std430, set = 0, binding = 9) writeonly buffer Pixels { vec4 pixels[]; };
 layout(std430, set = 0, binding = 10) buffer States { TraceState states[]; };

@@ -1,29 +1,37 @@
-// Mesh textures: bilinear filtering with wrap-around addressing, sampled at (u, 1 - v) (row 0
-// is the top of the image), texel centres at (i + 0.5) / size (docs/render-model.md).
+// Reading textures and environment maps: texel centres at (i + 0.5) / size, bilinear or nearest,
+// wrap or clamp per axis; the same steps as host/cpu/texture_sampling.h. Texels are packed RGB
+// floats (12 bytes each, so a 4096 x 2048 map fits lavapipe's 128 MiB per buffer).
 #ifndef VITRUM_TEXTURE_GLSL
 #define VITRUM_TEXTURE_GLSL
 
-vec3 texelAt(uvec4 info, int x, int y) {
-    int w = int(info.y);
-    int h = int(info.z);
-    x = ((x % w) + w) % w;
-    y = ((y % h) + h) % h;
-    return texels[info.x + uint(y * w + x)].xyz;
+int addressTexel(int i, int size, bool wrap) {
+    return wrap ? ((i % size) + size) % size : clamp(i, 0, size - 1);
 }
 
-vec3 sampleTextureBilinear(uint index, vec2 uv) {
+vec3 texelAt(uvec4 info, int x, int y, bool wrapU, bool wrapV) {
+    int w = int(info.y);
+    int h = int(info.z);
+    uint index = 3u * (info.x + uint(addressTexel(y, h, wrapV) * w + addressTexel(x, w, wrapU)));
+    return vec3(texels[index], texels[index + 1u], texels[index + 2u]);
+}
+
+// The value of texture `index` at (u, v) in [0, 1]^2, v = 0 at the top row.
+vec3 sampleTexture(uint index, vec2 uv, bool wrapU, bool wrapV) {
     uvec4 info = textures[index].offsetAndSize;
-    vec2 wrapped = vec2(uv.x - floor(uv.x), (1.0 - uv.y) - floor(1.0 - uv.y));
-    float x = wrapped.x * float(info.y) - 0.5;
-    float y = wrapped.y * float(info.z) - 0.5;
-    float x0 = floor(x);
-    float y0 = floor(y);
-    float fx = x - x0;
-    float fy = y - y0;
+    if (any(isnan(uv)) || any(isinf(uv))) return vec3(0.0);
+    float x = uv.x * float(info.y);
+    float y = uv.y * float(info.z);
+    if (params.environment.y == kFilterNearest) return texelAt(info, int(floor(x)), int(floor(y)), wrapU, wrapV);
+    float xc = x - 0.5;
+    float yc = y - 0.5;
+    float x0 = floor(xc);
+    float y0 = floor(yc);
+    float fx = xc - x0;
+    float fy = yc - y0;
     int ix = int(x0);
     int iy = int(y0);
-    vec3 top = mix(texelAt(info, ix, iy), texelAt(info, ix + 1, iy), fx);
-    vec3 bottom = mix(texelAt(info, ix, iy + 1), texelAt(info, ix + 1, iy + 1), fx);
+    vec3 top = mix(texelAt(info, ix, iy, wrapU, wrapV), texelAt(info, ix + 1, iy, wrapU, wrapV), fx);
+    vec3 bottom = mix(texelAt(info, ix, iy + 1, wrapU, wrapV), texelAt(info, ix + 1, iy + 1, wrapU, wrapV), fx);
     return mix(top, bottom, fy);
 }
 

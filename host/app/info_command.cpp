@@ -11,7 +11,8 @@
 #include "common/error.h"
 #include "gpu/vulkan_device.h"
 #include "image/image_diff.h"
-#include "render/packed_scene.h"
+#include "render/scene_features.h"
+#include "shared/gpu_types.h"
 #include "scene/scene_loader.h"
 
 namespace vitrum {
@@ -68,13 +69,11 @@ int infoCommand(int argc, char** argv, int first) {
         if (m.diffuseTexture >= 0) std::printf("  map_Kd %s", scene.textures[m.diffuseTexture].path.filename().c_str());
         std::printf("\n");
     }
-    // Media: each closed object whose material is glass encloses one (docs/render-model-decisions.md).
-    PackedScene packed = packScene(scene, bvh);
-    std::size_t glassObjects = 0;
-    for (std::uint32_t material : packed.objectMaterials)
-        if (scene.materials[material].model == MaterialModel::Glass) ++glassObjects;
-    std::printf("media: %zu glass objects%s; medium stack holds %u, pending-ray stack %u (exact to depth %u)\n",
-                glassObjects, glassObjects >= 2 ? " (touching surfaces are merged into one interface)" : "",
+    // What the scene can need (render/scene_features.h).
+    SceneFeatures features = analyseScene(scene);
+    std::printf("features:\n");
+    for (const std::string& line : features.describe()) std::printf("  %s\n", line.c_str());
+    std::printf("stacks: medium stack holds %u media, pending-ray stack %u rays (exact to depth %u)\n",
                 gpu::kMaxMediumDepth, gpu::kRayStackSize, gpu::kRayStackSize - 1);
     std::printf("lights: %zu\n", scene.lights.size());
     for (const PointLight& l : scene.lights)

@@ -18,7 +18,7 @@ struct PackedScene {
     std::vector<gpu::GpuMaterial> materials;
     std::vector<gpu::GpuLight> lights;
     std::vector<gpu::TextureInfo> textures;
-    std::vector<glm::vec4> texels;
+    std::vector<float> texels;  // RGB, 3 floats a texel
     // The material of each object's medium: its first glass triangle's material (or its first
     // triangle's when it has no glass).
     std::vector<std::uint32_t> objectMaterials;

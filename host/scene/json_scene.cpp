@@ -1,4 +1,5 @@
 #include "scene/json_scene.h"
+#include "scene/environment_map.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,6 +7,7 @@
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 #include <initializer_list>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -57,11 +59,7 @@ public:
         Scene scene;
         scene.source = file_;
         if (const json* v = member(root, "render")) scene.settings = settings(*v, "/render");
-        if (const json* v = member(root, "background")) {
-            requireObject(*v, "/background");
-            checkKeys(*v, "/background", {"colour"});
-            if (const json* c = member(*v, "colour")) scene.background.colour = vector3(*c, "/background/colour", true);
-        }
+        if (const json* v = member(root, "background")) background(*v, "/background", scene);
         if (const json* v = member(root, "air_ior"))
             scene.airIor = float(number(
                 *v, "/air_ior", [](double x) { return x >= 1.0 && x <= 10.0; }, "a number from 1 to 10"));
@@ -133,9 +131,14 @@ private:
         }
     }
 
+    // Finite also as a float: the scene is single precision (and 1e39 would not convert).
+    static bool isFiniteFloat(double x) {
+        return std::isfinite(x) && std::abs(x) <= double(std::numeric_limits<float>::max());
+    }
+
     double number(const json& v, const std::string& path, const std::function<bool(double)>& ok,
                   const std::string& what) const {
-        if (!v.is_number() || !std::isfinite(v.get<double>()) || !ok(v.get<double>())) expected(v, path, what);
+        if (!v.is_number() || !isFiniteFloat(v.get<double>()) || !ok(v.get<double>())) expected(v, path, what);
         return v.get<double>();
     }
 
@@ -148,7 +151,7 @@ private:
     glm::vec3 vector3(const json& v, const std::string& path, bool nonNegative = false) const {
         bool ok = v.is_array() && v.size() == 3;
         for (std::size_t i = 0; ok && i < 3; ++i)
-            ok = v[i].is_number() && std::isfinite(v[i].get<double>()) && (!nonNegative || v[i].get<double>() >= 0.0);
+            ok = v[i].is_number() && isFiniteFloat(v[i].get<double>()) && (!nonNegative || v[i].get<double>() >= 0.0);
         if (!ok) expected(v, path, nonNegative ? "an array of 3 non-negative numbers" : "an array of 3 finite numbers");
         return {v[0].get<float>(), v[1].get<float>(), v[2].get<float>()};
     }
@@ -170,7 +173,7 @@ private:
 
     RenderSettings settings(const json& v, const std::string& path) const {
         requireObject(v, path);
-        checkKeys(v, path, {"spp", "max_depth", "fresnel", "min_weight"});
+        checkKeys(v, path, {"spp", "max_depth", "fresnel", "min_weight", "filter"});
         RenderSettings s;
         if (const json* x = member(v, "spp")) s.samplesPerPixel = integer(*x, path + "/spp", 1, 4096);
         if (const json* x = member(v, "max_depth")) s.maxDepth = integer(*x, path + "/max_depth", 0, 64);
@@ -179,10 +182,43 @@ private:
                                              {{"schlick", FresnelModel::Schlick},
                                               {"exact", FresnelModel::Exact},
                                               {"schlick-exp2", FresnelModel::SchlickExp2}});
+        if (const json* x = member(v, "filter"))
+            s.filter = choice<TextureFilter>(*x, path + "/filter",
+                                             {{"bilinear", TextureFilter::Bilinear}, {"nearest", TextureFilter::Nearest}});
         if (const json* x = member(v, "min_weight"))
             s.minWeight = float(number(
                 *x, path + "/min_weight", [](double w) { return w >= 0.0 && w <= 1.0; }, "a number from 0 to 1"));
         return s;
+    }
+
+    // {"colour": [r, g, b]}, {"spherical": "sky.hdr"}, {"cube": [six faces +x -x +y -y +z -z]} or
+    // {"cube_cross": "cross.png"}; a map may come with a "colour" (unused) but not with another map.
+    void background(const json& v, const std::string& path, Scene& scene) const {
+        requireObject(v, path);
+        checkKeys(v, path, {"colour", "spherical", "cube", "cube_cross"});
+        if (const json* c = member(v, "colour")) scene.background.colour = vector3(*c, path + "/colour", true);
+        int maps = int(member(v, "spherical") != nullptr) + int(member(v, "cube") != nullptr) +
+                   int(member(v, "cube_cross") != nullptr);
+        if (maps > 1) fail(path, "a background has one map: \"spherical\", \"cube\" or \"cube_cross\", not several");
+        auto imagePath = [&](const json& x, const std::string& at) {
+            if (!x.is_string() || x.get<std::string>().empty()) expected(x, at, "an image file name");
+            return file_.parent_path() / x.get<std::string>();
+        };
+        try {
+            if (const json* x = member(v, "spherical")) {
+                loadSphericalBackground(scene, imagePath(*x, path + "/spherical"));
+            } else if (const json* x = member(v, "cube_cross")) {
+                loadCubeCrossBackground(scene, imagePath(*x, path + "/cube_cross"));
+            } else if (const json* x = member(v, "cube")) {
+                if (!x->is_array() || x->size() != 6)
+                    expected(*x, path + "/cube", "six image file names (+x, -x, +y, -y, +z, -z)");
+                std::array<fs::path, 6> faces;
+                for (std::size_t i = 0; i < 6; ++i) faces[i] = imagePath((*x)[i], path + "/cube/" + std::to_string(i));
+                loadCubeBackground(scene, faces);
+            }
+        } catch (const InputError& e) {
+            fail(path, e.what());
+        }
     }
 
     std::vector<PointLight> lights(const json& v, const std::string& path) const {

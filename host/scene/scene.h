@@ -64,8 +64,18 @@ struct Camera {
     std::uint32_t height = 480;
 };
 
+enum class BackgroundKind : std::uint32_t { Constant = 0, Spherical = 1, Cube = 2 };
+
+// How textures and environment maps are read between texel centres (render model: bilinear by
+// default, nearest as an accuracy setting).
+enum class TextureFilter : std::uint32_t { Bilinear = 0, Nearest = 1 };
+
 struct Background {
-    glm::vec3 colour{0.0f};  // linear
+    BackgroundKind kind = BackgroundKind::Constant;
+    glm::vec3 colour{0.0f};  // linear; the Constant background
+    // Spherical: the equirectangular map's index in Scene::textures. Cube: the +x face's; the
+    // -x, +y, -y, +z and -z faces follow it (docs/scene-format.md shows their orientation).
+    int map = -1;
 };
 
 struct RenderSettings {
@@ -73,6 +83,7 @@ struct RenderSettings {
     std::uint32_t maxDepth = 10;
     FresnelModel fresnel = FresnelModel::Schlick;
     float minWeight = 0.0f;
+    TextureFilter filter = TextureFilter::Bilinear;  // mesh textures and environment maps
 };
 
 struct Scene {
