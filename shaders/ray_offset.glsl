@@ -1,16 +1,19 @@
 // Offsetting a new ray's origin off the surface it starts on: Waechter and Binder, "A Fast and
 // Robust Method for Avoiding Self-Intersection", Ray Tracing Gems, ch. 6. `n` is the geometric
-// normal on the side the new ray leaves towards.
+// normal on the side the new ray leaves towards. The chapter's absolute constants (origin region
+// 1/32, offset 1/65536 there) are scaled to the scene by the host: params.offsets.x is the region's
+// radius, params.offsets.y the offset (host/cpu/ray_offset.h, rayOffsetScale, says why). `params`
+// is declared by the including kernel before this file.
 #ifndef VITRUM_RAY_OFFSET_GLSL
 #define VITRUM_RAY_OFFSET_GLSL
 
 float offsetComponent(float p, float n) {
-    const float kOrigin = 1.0 / 32.0;
-    const float kFloatScale = 1.0 / 65536.0;
+    float originRegion = params.offsets.x;
+    float absoluteOffset = params.offsets.y;
     const float kIntScale = 256.0;
     int offsetInt = int(kIntScale * n);
     float pInt = intBitsToFloat(floatBitsToInt(p) + (p < 0.0 ? -offsetInt : offsetInt));
-    return abs(p) < kOrigin ? p + kFloatScale * n : pInt;
+    return abs(p) < originRegion ? p + absoluteOffset * n : pInt;
 }
 
 vec3 offsetRayOrigin(vec3 p, vec3 n) {

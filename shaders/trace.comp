@@ -32,6 +32,7 @@ void onTouchingHit(TriangleVertices tri, float t);
 #include "optics.glsl"
 #include "ray_offset.glsl"
 #include "texture.glsl"
+#include "background.glsl"
 
 const uint kPhaseStartSample = 0u;  // make the next primary ray, or finish the pixel
 const uint kPhaseTrace = 1u;        // closest-hit traversal of st.ray
@@ -119,7 +120,7 @@ void finishTrace() {
     // Beer-Lambert over the segment just travelled (render model: "Media: the IOR stack").
     vec3 mu = mediumAttenuation(st.ray);
     if (triangle == kNoTriangle) {
-        vec3 escaped = st.ray.weight.xyz * params.background.xyz;
+        vec3 escaped = st.ray.weight.xyz * backgroundRadiance(st.ray.direction.xyz);
         if (any(greaterThan(mu, vec3(0.0)))) {
             // Only an open mesh lets a ray leave the scene inside an absorbing medium.
             escaped *= vec3(equal(mu, vec3(0.0)));
@@ -136,10 +137,17 @@ void finishTrace() {
     TriangleShading sh = shading[triangle];
     vec2 bary = st.hitUv.zw;
     float w0 = 1.0 - bary.x - bary.y;
-    vec3 geometricNormal = normalize(cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz));
+    vec3 edgeCross = cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz);
+    float crossLength = length(edgeCross);
     vec3 interpolated = w0 * sh.n0.xyz + bary.x * sh.n1.xyz + bary.y * sh.n2.xyz;
     float normalLength = length(interpolated);
-    vec3 shadingNormal = normalLength > 0.0 ? interpolated / normalLength : geometricNormal;
+    bool shadingValid = normalLength > 0.0 && !isinf(normalLength);
+    // A triangle whose corners are collinear has no geometric normal but can still be hit by
+    // rounding: fall back to the shading normal, else to facing the ray (hard-cases.md).
+    vec3 geometricNormal = crossLength > 0.0 && !isinf(crossLength)
+                               ? edgeCross / crossLength
+                               : (shadingValid ? interpolated / normalLength : -st.ray.direction.xyz);
+    vec3 shadingNormal = shadingValid ? interpolated / normalLength : geometricNormal;
     vec2 uv = w0 * sh.uv01.xy + bary.x * sh.uv01.zw + bary.y * sh.uv2.xy;
     // The hit point from the barycentrics, not origin + t d: it lies on the triangle to within
     // rounding (Waechter and Binder).
@@ -179,7 +187,8 @@ void finishTrace() {
 
 vec3 diffuseColour(GpuMaterial m) {
     uint texture = floatBitsToUint(m.diffuse.w);
-    return texture == kNoTexture ? m.diffuse.xyz : sampleTextureBilinear(texture, st.hitUv.xy);
+    return texture == kNoTexture ? m.diffuse.xyz
+                                 : sampleTexture(texture, vec2(st.hitUv.x, 1.0 - st.hitUv.y), true, true);
 }
 
 // The visibility-weighted part of light `index` at the hit: m_d max(0, n.l) (+ Phong's

@@ -14,10 +14,12 @@
 #include "common/error.h"
 #include "common/progress.h"
 #include "cpu/reference_renderer.h"
+#include "gpu/gpu_buffer.h"
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
 #include "image/image.h"
 #include "scene/scene_loader.h"
+#include "shared/gpu_types.h"
 
 namespace vitrum {
 namespace {
@@ -38,6 +40,7 @@ Renders SCENE (a .json scene file or a bare .obj) and writes OUT: .png (8-bit sR
   --max-depth N            rays are traced while their depth is below N (0..64; default 10)
   --min-weight W           skip branches whose path weight is below W in every channel (default 0)
   --fresnel MODEL          schlick (default) | exact | schlick-exp2, for glass
+  --filter MODE            bilinear (default) | nearest: textures and environment maps
   --camera-from X,Y,Z      camera position
   --camera-at X,Y,Z        camera target
   --camera-up X,Y,Z        camera up vector
@@ -65,6 +68,7 @@ struct RenderCommand {
     std::optional<std::uint32_t> width, height, spp, maxDepth;
     std::optional<float> minWeight, fov;
     std::optional<FresnelModel> fresnel;
+    std::optional<TextureFilter> filter;
     std::optional<glm::vec3> from, at, up, background;
     std::vector<glm::vec3> lights;
 };
@@ -108,6 +112,11 @@ RenderCommand parse(int argc, char** argv, int first) {
             else if (v == "exact") c.fresnel = FresnelModel::Exact;
             else if (v == "schlick-exp2") c.fresnel = FresnelModel::SchlickExp2;
             else throw InputError("--fresnel must be schlick, exact or schlick-exp2, got \"" + v + "\"");
+        } else if (flag == "--filter") {
+            std::string v = args.valueOf(flag);
+            if (v == "bilinear") c.filter = TextureFilter::Bilinear;
+            else if (v == "nearest") c.filter = TextureFilter::Nearest;
+            else throw InputError("--filter must be bilinear or nearest, got \"" + v + "\"");
         } else if (flag == "--camera-from") c.from = Arguments::toVec3(flag, args.valueOf(flag));
         else if (flag == "--camera-at") c.at = Arguments::toVec3(flag, args.valueOf(flag));
         else if (flag == "--camera-up") c.up = Arguments::toVec3(flag, args.valueOf(flag));
@@ -150,11 +159,15 @@ void applyOverrides(const RenderCommand& c, Scene& scene) {
     if (c.maxDepth) scene.settings.maxDepth = *c.maxDepth;
     if (c.minWeight) scene.settings.minWeight = *c.minWeight;
     if (c.fresnel) scene.settings.fresnel = *c.fresnel;
+    if (c.filter) scene.settings.filter = *c.filter;
     if (c.from) scene.camera.from = *c.from;
     if (c.at) scene.camera.at = *c.at;
     if (c.up) scene.camera.up = *c.up;
     if (c.fov) scene.camera.fovY = *c.fov;
-    if (c.background) scene.background.colour = *c.background;
+    if (c.background) {
+        scene.background.kind = BackgroundKind::Constant;
+        scene.background.colour = *c.background;
+    }
     if (!c.lights.empty()) {
         scene.lights.clear();
         for (const glm::vec3& p : c.lights) scene.lights.push_back({.position = p, .colour = glm::vec3(1.0f)});
@@ -166,6 +179,45 @@ void applyOverrides(const RenderCommand& c, Scene& scene) {
         throw InputError("the camera's up vector is parallel to its viewing direction");
     if (std::uint64_t(cam.width) * cam.height > (1ull << 28))
         throw InputError("the image is too large: " + std::to_string(cam.width) + "x" + std::to_string(cam.height));
+}
+
+// Refuses a scene whose GPU buffers would not fit the device, from the scene's counts alone: before
+// the BVH build, the packing and the upload (gpu/vulkan_renderer.cpp makes the buffers, and
+// GpuBuffer checks each again then). The BVH has at most 2n - 1 nodes for n triangles.
+void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const VulkanRenderOptions& options) {
+    const VkDeviceSize triangles = scene.triangles.size();
+    VkDeviceSize texels = 0;
+    for (const Texture& texture : scene.textures) texels += texture.texels.size();
+    const std::uint32_t tile = std::max(8u, options.tileSize);
+    const VkDeviceSize tilePixels =
+        VkDeviceSize(std::min(tile, scene.camera.width)) * std::min(tile, scene.camera.height);
+    const struct {
+        const char* what;
+        VkDeviceSize bytes;
+    } buffers[] = {
+        {"BVH nodes", 2 * triangles * sizeof(gpu::BvhNode)},
+        {"triangle vertices", triangles * sizeof(gpu::TriangleVertices)},
+        {"triangle normals and uvs", triangles * sizeof(gpu::TriangleShading)},
+        {"materials", scene.materials.size() * sizeof(gpu::GpuMaterial)},
+        {"texture texels", texels * 3 * sizeof(float)},
+        {"image", VkDeviceSize(scene.camera.width) * scene.camera.height * sizeof(glm::vec4)},
+        {"trace state of one tile", tilePixels * sizeof(gpu::TraceState)},
+    };
+    const VkDeviceSize limit = storageBufferLimit(device).bytes;
+    VkDeviceSize total = 0;
+    for (const auto& buffer : buffers) {
+        if (buffer.bytes > limit) throw bufferTooLarge(device, buffer.what, buffer.bytes);
+        total += buffer.bytes;
+    }
+    VkPhysicalDeviceMemoryProperties memory{};
+    vkGetPhysicalDeviceMemoryProperties(device.physicalDevice(), &memory);
+    VkDeviceSize largestHeap = 0;
+    for (std::uint32_t i = 0; i < memory.memoryHeapCount; ++i)
+        largestHeap = std::max(largestHeap, memory.memoryHeaps[i].size);
+    if (largestHeap > 0 && total > largestHeap)
+        throw InputError("the scene does not fit the device: its buffers need " + describeBytes(total) +
+                         " in all, but the largest memory heap of " + device.name() + " has " +
+                         describeBytes(largestHeap));
 }
 
 }  // namespace
@@ -183,6 +235,17 @@ int renderCommand(int argc, char** argv, int first) {
     applyOverrides(command, scene);
     double loadSeconds = std::chrono::duration<double>(Clock::now() - start).count();
 
+    // The device comes before the BVH build, so that a scene too large for it is refused before
+    // any long work.
+    std::optional<VulkanDevice> device;
+    double deviceSeconds = 0.0;
+    if (command.backend == Backend::Vulkan) {
+        auto deviceStart = Clock::now();
+        device.emplace(command.device);
+        deviceSeconds = std::chrono::duration<double>(Clock::now() - deviceStart).count();
+        checkSceneFitsDevice(*device, scene, command.gpu);
+    }
+
     Bvh bvh = buildBvh(scene.triangles);
 
     RenderStats stats;
@@ -193,13 +256,11 @@ int renderCommand(int argc, char** argv, int first) {
         ProgressBar progress("rendering");
         auto onProgress = [&](double fraction) { progress.update(fraction); };
         if (command.backend == Backend::Vulkan) {
-            auto deviceStart = Clock::now();
-            VulkanDevice device(command.device);
-            stats.addPhase("device", std::chrono::duration<double>(Clock::now() - deviceStart).count());
+            stats.addPhase("device", deviceSeconds);
             command.gpu.progress = onProgress;
-            image = renderVulkan(device, scene, bvh, command.gpu, stats);
-            if (device.validationMessages() > 0)
-                throw std::runtime_error(std::to_string(device.validationMessages()) +
+            image = renderVulkan(*device, scene, bvh, command.gpu, stats);
+            if (device->validationMessages() > 0)
+                throw std::runtime_error(std::to_string(device->validationMessages()) +
                                          " Vulkan validation messages (see above)");
         } else {
             ReferenceOptions options{.doublePrecision = command.doublePrecision,

@@ -1,4 +1,4 @@
-// CPU traversal of the flat BVH, mirroring shaders/bvh.glsl: Moller-Trumbore with the same
+// CPU traversal of the flat BVH, mirroring shaders/bvh.glsl: the watertight triangle test with the same
 // operations in the same order, a slab test per node, and a depth-first stack that visits the
 // child on the ray's near side of the split first.
 #include "bvh/bvh_traversal.h"
@@ -7,6 +7,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace vitrum {
 namespace {
@@ -84,23 +85,49 @@ void traverse(std::span<const gpu::BvhNode> nodes, const Ray<Real>& ray, Real& t
 
 template <class Real>
 std::optional<TriangleHit<Real>> intersectTriangle(const gpu::TriangleVertices& tri, const Ray<Real>& ray) {
-    // Moller-Trumbore, exactly the operation order of shaders/bvh.glsl.
-    const Vec3<Real> v0 = toReal<Real>(tri.v0);
-    const Vec3<Real> e1 = toReal<Real>(tri.v1) - v0;
-    const Vec3<Real> e2 = toReal<Real>(tri.v2) - v0;
-    const Vec3<Real> p = glm::cross(ray.direction, e2);
-    const Real det = glm::dot(e1, p);
-    if (det == Real(0)) return std::nullopt;
+    // Woop, Benthin and Wald, "Watertight Ray/Triangle Intersection" (JCGT 2013), without back-face
+    // culling, exactly the operation order of shaders/bvh.glsl. The vertices are moved into a frame
+    // where the ray starts at the origin and runs along +z (a shear), so the three edge functions
+    // are 2D cross products of the transformed vertices. An edge shared by two triangles gives the
+    // same two vertices to both, hence exactly opposite edge functions: a ray can never pass
+    // between them. A zero edge function counts as inside, so a ray exactly on an edge or a vertex
+    // hits every triangle around it (the paper's double-precision re-evaluation of zeros, which
+    // would pick one, is left out: it is not needed for watertightness and GLSL has no double here).
+    const Vec3<Real>& d = ray.direction;
+    // kz: the dimension where |d| is largest (first one on ties); kx, ky follow it cyclically,
+    // swapped when d[kz] < 0 to keep the triangles' winding.
+    int kz = 0;
+    if (std::fabs(d.y) > std::fabs(d[kz])) kz = 1;
+    if (std::fabs(d.z) > std::fabs(d[kz])) kz = 2;
+    int kx = kz == 2 ? 0 : kz + 1;
+    int ky = kx == 2 ? 0 : kx + 1;
+    if (d[kz] < Real(0)) std::swap(kx, ky);
+    // Shear constants: multiplications by 1 / d[kz], as the GLSL does them.
+    const Real sz = Real(1) / d[kz];
+    const Real sx = d[kx] * sz;
+    const Real sy = d[ky] * sz;
+    const Vec3<Real> a = toReal<Real>(tri.v0) - ray.origin;
+    const Vec3<Real> b = toReal<Real>(tri.v1) - ray.origin;
+    const Vec3<Real> c = toReal<Real>(tri.v2) - ray.origin;
+    const Real ax = a[kx] - sx * a[kz];
+    const Real ay = a[ky] - sy * a[kz];
+    const Real bx = b[kx] - sx * b[kz];
+    const Real by = b[ky] - sy * b[kz];
+    const Real cx = c[kx] - sx * c[kz];
+    const Real cy = c[ky] - sy * c[kz];
+    // Scaled barycentrics: u0 of v0 (edge v1 v2), u1 of v1, u2 of v2.
+    const Real u0 = cx * by - cy * bx;
+    const Real u1 = ax * cy - ay * cx;
+    const Real u2 = bx * ay - by * ax;
+    if ((u0 < Real(0) || u1 < Real(0) || u2 < Real(0)) && (u0 > Real(0) || u1 > Real(0) || u2 > Real(0)))
+        return std::nullopt;
+    const Real det = u0 + u1 + u2;
+    if (det == Real(0)) return std::nullopt;  // degenerate triangle, or the ray lies in its plane
+    const Real scaledT = u0 * (sz * a[kz]) + u1 * (sz * b[kz]) + u2 * (sz * c[kz]);
     const Real invDet = Real(1) / det;
-    const Vec3<Real> s = ray.origin - v0;
-    const Real u = glm::dot(s, p) * invDet;
-    if (u < Real(0) || u > Real(1)) return std::nullopt;
-    const Vec3<Real> q = glm::cross(s, e1);
-    const Real v = glm::dot(ray.direction, q) * invDet;
-    if (v < Real(0) || u + v > Real(1)) return std::nullopt;
-    const Real t = glm::dot(e2, q) * invDet;
+    const Real t = scaledT * invDet;
     if (!(t > ray.tMin && t < ray.tMax)) return std::nullopt;
-    return TriangleHit<Real>{t, u, v, 0};
+    return TriangleHit<Real>{t, u1 * invDet, u2 * invDet, 0};
 }
 
 template <class Real>

@@ -1,6 +1,6 @@
 // CPU traversal of the flattened BVH (the same node array the GPU walks), in float or double.
-// Triangle test: Moller-Trumbore ("Fast, Minimum Storage Ray/Triangle Intersection", 1997) on
-// the stored vertices, edges computed as v1 - v0 and v2 - v0 exactly like shaders/bvh.glsl.
+// Triangle test: Woop, Benthin and Wald, "Watertight Ray/Triangle Intersection" (JCGT 2013) on the
+// stored vertices, exactly like shaders/bvh.glsl: no ray slips between triangles sharing an edge.
 #pragma once
 
 #include <cstdint>

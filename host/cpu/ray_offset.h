@@ -3,26 +3,67 @@
 // number of ulps of each coordinate (scale-invariant), with a small absolute offset near the
 // origin where ulps vanish. `n` is the geometric normal on the side the new ray goes to.
 //
-// float: the chapter's constants, the same arithmetic as shaders/ray_offset.glsl.
+// The chapter's two absolute constants (origin region 1/32, offset there 1/65536) assume a scene
+// of about unit size: a scene 1e-3 across lies wholly inside the origin region and gets offsets of
+// 1.5% of its size, one 1e3 across gets offsets below the rounding of its hit points. So both are
+// scaled with the scene's extent E (the longest side of the bounding box of its triangles):
+//   - origin region E / 32: the chapter's for E = 1. Outside it the relative offset, 256 ulps of
+//     |p| >= 2^-16 |p|, is at least 2^-21 E, above the error of an interpolated hit point along the
+//     normal (about 4 float roundings of the triangle's largest coordinate, <= 2^-22 E);
+//   - absolute offset E / 2^20: exactly 256 ulps of E / 32 when E is a power of two, so the offset
+//     does not jump at the region's edge, and still 4x the 2^-22 E error bound. The chapter's
+//     1/65536 is 16x more at E = 1; we do not take that extra margin because every restart inside
+//     an absorbing medium loses mu x offset of path (the touching-boxes reference test sees it).
+// Both are exact scalings of E, so a scene scaled by s gets offsets scaled by s (exactly for a
+// power of two). The host passes the same two numbers to the GPU in RenderParams.offsets
+// (makeRenderParams). RayOffsetScale{} keeps the chapter's own constants.
+//
+// float: the chapter's method, the same arithmetic as shaders/ray_offset.glsl.
 // double: the same method on the double's bits. The hit point of a double render carries errors of
 // double ulps, so the offset is 256 double ulps (and the near-origin offset is scaled down by the
 // 2^29 between the two mantissas) instead of 256 float ulps: the double render stays the closer
 // approximation of the exact image rather than inheriting float's offsets.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <span>
 
 #include <glm/glm.hpp>
 
+#include "scene/scene.h"
+
 namespace vitrum {
+
+// The absolute part of the offset (see above); the default is the chapter's constants.
+struct RayOffsetScale {
+    float origin = 1.0f / 32.0f;         // radius of the region around the origin with absolute offsets
+    float absolute = 1.0f / 65536.0f;    // the offset there, in float renders
+};
+
+// E = the longest side of the triangles' bounding box; an empty or single-point scene, or one with
+// non-finite coordinates, uses E = 1.
+inline RayOffsetScale rayOffsetScale(std::span<const Triangle> triangles) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+    for (const Triangle& t : triangles)
+        for (const glm::vec3& p : t.position) {
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+    const glm::vec3 size = hi - lo;
+    float extent = std::max(size.x, std::max(size.y, size.z));
+    if (triangles.empty() || !(extent > 0.0f) || !std::isfinite(extent)) extent = 1.0f;
+    return {extent / 32.0f, extent / 1048576.0f};
+}
 
 namespace detail {
 
-inline float offsetComponent(float p, float n) {
-    constexpr float kOrigin = 1.0f / 32.0f;
-    constexpr float kFloatScale = 1.0f / 65536.0f;
+inline float offsetComponent(float p, float n, const RayOffsetScale& scale) {
+    const float kOrigin = scale.origin;
+    const float kFloatScale = scale.absolute;
     constexpr float kIntScale = 256.0f;
     const auto offsetInt = static_cast<std::int32_t>(kIntScale * n);
     const std::int32_t bits = std::bit_cast<std::int32_t>(p);
@@ -32,9 +73,9 @@ inline float offsetComponent(float p, float n) {
     return std::fabs(p) < kOrigin ? p + kFloatScale * n : pInt;
 }
 
-inline double offsetComponent(double p, double n) {
-    constexpr double kOrigin = 1.0 / 32.0;
-    constexpr double kFloatScale = 1.0 / 65536.0 / 536870912.0;  // float's constant / 2^29
+inline double offsetComponent(double p, double n, const RayOffsetScale& scale) {
+    const double kOrigin = double(scale.origin);
+    const double kFloatScale = double(scale.absolute) / 536870912.0;  // float's offset / 2^29
     constexpr double kIntScale = 256.0;
     const auto offsetInt = static_cast<std::int64_t>(kIntScale * n);
     const std::int64_t bits = std::bit_cast<std::int64_t>(p);
@@ -46,8 +87,10 @@ inline double offsetComponent(double p, double n) {
 }  // namespace detail
 
 template <class Real>
-glm::vec<3, Real> offsetRayOrigin(const glm::vec<3, Real>& p, const glm::vec<3, Real>& n) {
-    return {detail::offsetComponent(p.x, n.x), detail::offsetComponent(p.y, n.y), detail::offsetComponent(p.z, n.z)};
+glm::vec<3, Real> offsetRayOrigin(const glm::vec<3, Real>& p, const glm::vec<3, Real>& n,
+                                  const RayOffsetScale& scale = {}) {
+    return {detail::offsetComponent(p.x, n.x, scale), detail::offsetComponent(p.y, n.y, scale),
+            detail::offsetComponent(p.z, n.z, scale)};
 }
 
 }  // namespace vitrum

@@ -4,11 +4,13 @@
 // pixel by pixel:
 //   - the hit point is interpolated from the barycentrics (Waechter and Binder recommend it over
 //     o + t d: its error scales with the triangle, not with the ray's length);
-//   - new rays start at offsetRayOrigin(p, n_g) on the side they go to, with tMin = 0;
+//   - new rays start at offsetRayOrigin(p, n_g) on the side they go to, with tMin = 0, with the
+//     offsets scaled to the scene exactly as makeRenderParams scales the GPU's (rayOffsetScale);
 //   - a shadow ray runs from the offset point to the light as o + t (light - o), 0 < t < 1, any hit;
 //   - the ambient term of a light is not attenuated by inverse-square fall-off, the direct term is;
 //   - a light's shadow ray is traced only when its direct term is not zero.
 #include "cpu/reference_renderer.h"
+#include "cpu/texture_sampling.h"
 
 #include <algorithm>
 #include <atomic>
@@ -35,6 +37,7 @@ struct TraceCounters {
     std::uint64_t weightCuts = 0;
     std::uint64_t totalInternalReflections = 0;
     std::uint64_t absorbedEscapes = 0;
+    std::uint64_t inconsistentMedia = 0;
     TraversalCounters traversal;
 
     void addTo(RenderStats& stats) const {
@@ -44,6 +47,7 @@ struct TraceCounters {
         stats.rays.refraction += rays.refraction;
         stats.limits.depthLimit += depthLimit;
         stats.limits.weightCuts += weightCuts;
+        stats.limits.inconsistentMedia += inconsistentMedia;
         stats.totalInternalReflections += totalInternalReflections;
         stats.absorbedEscapes += absorbedEscapes;
         stats.nodeVisits += traversal.nodeVisits;
@@ -89,7 +93,8 @@ public:
           mediumMaterials_(objectMediumMaterials(scene)),
           maxDepth_(scene.settings.maxDepth),
           touchTolerance_(sceneDiagonal(bvh) * Real(kTouchingTolerance)),
-          minWeight_(Real(scene.settings.minWeight)) {
+          minWeight_(Real(scene.settings.minWeight)),
+          offsetScale_(rayOffsetScale(scene.triangles)) {
         const Camera& c = scene.camera;
         cameraFrom_ = Vec3(c.from);
         cameraZ_ = glm::normalize(Vec3(c.from) - Vec3(c.at));
@@ -139,7 +144,8 @@ private:
         const auto found = traceClosest<Real>(bvh_.nodes, vertices_, ray, &counters.traversal);
         const Color mu = mediumAttenuation(media);
         if (!found) {
-            Color escaped = Color(scene_.background.colour);
+            // Constant colour or environment map (render model, "Background").
+            Color escaped = sampling::backgroundRadiance<Real>(scene_, d);
             if (glm::any(glm::greaterThan(mu, Color(0)))) {
                 // Only an open mesh lets a ray leave the scene inside an absorbing medium: the
                 // infinite segment absorbs everything in those channels (render model, "Media").
@@ -149,7 +155,7 @@ private:
             }
             return escaped;
         }
-        const Hit hit = describeHit(*found);
+        const Hit hit = describeHit(*found, d);
         // Beer-Lambert over the segment just travelled; air (mu = 0) gives 1 (lecture: l = 0 in air).
         const Color transmittance = optics::beerLambert(mu, hit.t);
         const Color w = weight * transmittance;
@@ -161,7 +167,7 @@ private:
         return colour * transmittance;
     }
 
-    Hit describeHit(const TriangleHit<Real>& found) const {
+    Hit describeHit(const TriangleHit<Real>& found, const Vec3& direction) const {
         const gpu::TriangleVertices& tv = vertices_[found.triangle];
         const Triangle& tri = scene_.triangles[bvh_.triangleOrder[found.triangle]];
         const Vec3 v0(tv.v0), v1(tv.v1), v2(tv.v2);
@@ -169,11 +175,18 @@ private:
         Hit hit;
         hit.t = found.t;
         hit.position = w0 * v0 + found.u * v1 + found.v * v2;
-        hit.geometricNormal = glm::normalize(glm::cross(v1 - v0, v2 - v0));
+        const Vec3 edgeCross = glm::cross(v1 - v0, v2 - v0);
+        const Real crossLength = glm::length(edgeCross);
         const Vec3 interpolated =
             w0 * Vec3(tri.normal[0]) + found.u * Vec3(tri.normal[1]) + found.v * Vec3(tri.normal[2]);
         const Real length = glm::length(interpolated);
-        hit.shadingNormal = length > Real(0) && std::isfinite(length) ? interpolated / length : hit.geometricNormal;
+        const bool shadingValid = length > Real(0) && std::isfinite(length);
+        // A triangle whose corners are collinear has no geometric normal but can still be hit by
+        // rounding: fall back to the shading normal, else to facing the ray (hard-cases.md).
+        hit.geometricNormal = crossLength > Real(0) && std::isfinite(crossLength)
+                                  ? edgeCross / crossLength
+                                  : (shadingValid ? interpolated / length : -direction);
+        hit.shadingNormal = shadingValid ? interpolated / length : hit.geometricNormal;
         hit.uv = w0 * glm::vec<2, Real>(tri.uv[0]) + found.u * glm::vec<2, Real>(tri.uv[1]) +
                  found.v * glm::vec<2, Real>(tri.uv[2]);
         hit.material = &scene_.materials[tri.material];
@@ -243,47 +256,25 @@ private:
 
     // V(p, l_p): no surface (glass included) strictly between the offset hit point and the light.
     bool visible(const Hit& hit, const Vec3& lightPosition, TraceCounters& counters) const {
-        const Vec3 origin = offsetRayOrigin(hit.position, hit.geometricNormal);
+        const Vec3 origin = offsetRayOrigin(hit.position, hit.geometricNormal, offsetScale_);
         counters.rays.shadow += 1;
         // t in units of the whole segment: 0 < t < 1 excludes the light's own position.
         const Ray<Real> shadow{origin, lightPosition - origin, Real(0), Real(1)};
         return !traceAny<Real>(bvh_.nodes, vertices_, shadow, &counters.traversal);
     }
 
-    // m_d: Kd, or the bilinear texel of map_Kd at (u, 1 - v) (render model, "Geometry and camera").
+    // m_d: Kd, or the texel of map_Kd at (u, 1 - v), wrapping in both directions (render model,
+    // "Geometry and camera"); filtered as the scene asks (bilinear by default).
     Color diffuseColour(const Material& m, const glm::vec<2, Real>& uv) const {
         if (m.diffuseTexture < 0 || std::size_t(m.diffuseTexture) >= scene_.textures.size()) return Color(m.diffuse);
-        return sampleBilinear(scene_.textures[std::size_t(m.diffuseTexture)], uv);
-    }
-
-    // Bilinear filtering with wrap-around addressing in u and v; texel centres at (i + 0.5) / size.
-    // The same steps as shaders/texture.glsl.
-    static Color sampleBilinear(const Texture& texture, const glm::vec<2, Real>& uv) {
-        const int w = texture.width, h = texture.height;
-        if (w <= 0 || h <= 0 || texture.texels.size() < std::size_t(w) * std::size_t(h)) return Color(0);
-        const Real u = uv.x - std::floor(uv.x);
-        const Real flipped = Real(1) - uv.y;
-        const Real v = flipped - std::floor(flipped);
-        if (!std::isfinite(u) || !std::isfinite(v)) return Color(0);
-        const Real x = u * Real(w) - Real(0.5);
-        const Real y = v * Real(h) - Real(0.5);
-        const Real x0 = std::floor(x), y0 = std::floor(y);
-        const Real fx = x - x0, fy = y - y0;
-        const int ix = int(x0), iy = int(y0);
-        auto texel = [&](int tx, int ty) {
-            tx = ((tx % w) + w) % w;
-            ty = ((ty % h) + h) % h;
-            return Color(texture.texels[std::size_t(ty) * std::size_t(w) + std::size_t(tx)]);
-        };
-        const Color top = glm::mix(texel(ix, iy), texel(ix + 1, iy), fx);
-        const Color bottom = glm::mix(texel(ix, iy + 1), texel(ix + 1, iy + 1), fx);
-        return glm::mix(top, bottom, fy);
+        return sampling::sampleTexture<Real>(scene_.textures[std::size_t(m.diffuseTexture)], uv.x, Real(1) - uv.y,
+                                             scene_.settings.filter, sampling::Address::Wrap, sampling::Address::Wrap);
     }
 
     // C_refl of an opaque surface: the reflected ray keeps the medium stack.
     Color traceReflection(const Hit& hit, const Vec3& d, std::uint32_t depth, const MediumStack& media,
                           const Color& weight, TraceCounters& counters) const {
-        const Vec3 origin = offsetRayOrigin(hit.position, hit.geometricNormal);
+        const Vec3 origin = offsetRayOrigin(hit.position, hit.geometricNormal, offsetScale_);
         return traceChild(origin, optics::reflect(d, hit.shadingNormal), depth, media, weight, true, counters);
     }
 
@@ -322,9 +313,11 @@ private:
         for (const Crossing& c : crossings) {
             if (c.entering) continue;
             // Remove the innermost entry of the object (normally the top of the stack). A ray that
-            // leaves an object it never entered (open mesh, or a ray started inside) keeps its stack.
+            // leaves an object it never entered (open mesh, inside-out winding, or a ray started
+            // inside) keeps its stack, and that is counted, like trace.comp's inconsistent_media.
             const auto it = std::find(inside.rbegin(), inside.rend(), c.object);
             if (it != inside.rend()) inside.erase(std::next(it).base());
+            else counters.inconsistentMedia += 1;
         }
         for (const Crossing& c : crossings)
             if (c.entering) inside.push_back(c.object);
@@ -339,7 +332,7 @@ private:
         if (n1 == n2) {
             // Index-matched: no optical interface. The same ray goes on, at the same depth, with the
             // updated stack (render model, "The ray tree").
-            return trace(offsetRayOrigin(through, -facing), d, depth, inside, weight, counters);
+            return trace(offsetRayOrigin(through, -facing, offsetScale_), d, depth, inside, weight, counters);
         }
         const Real eta = n1 / n2;
         const Real cosI = -glm::dot(d, n);
@@ -348,14 +341,14 @@ private:
         Color colour(0);
         if (refracted) {
             const Color wt = weight * (Real(1) - r);
-            colour += (Real(1) - r) *
-                      traceChild(offsetRayOrigin(through, -facing), *refracted, depth, inside, wt, false, counters);
+            const Vec3 origin = offsetRayOrigin(through, -facing, offsetScale_);
+            colour += (Real(1) - r) * traceChild(origin, *refracted, depth, inside, wt, false, counters);
         } else {
             counters.totalInternalReflections += 1;  // R = 1 (the Fresnel functions return it)
         }
         // The reflected ray stays in the medium it came from: it keeps the old stack.
-        colour += r * traceChild(offsetRayOrigin(hit.position, facing), optics::reflect(d, n), depth, media,
-                                 weight * r, true, counters);
+        colour += r * traceChild(offsetRayOrigin(hit.position, facing, offsetScale_), optics::reflect(d, n), depth,
+                                 media, weight * r, true, counters);
         return colour;
     }
 
@@ -406,6 +399,7 @@ private:
     std::uint32_t maxDepth_;
     Real touchTolerance_;  // surfaces closer than this along a ray touch
     Real minWeight_;
+    RayOffsetScale offsetScale_;  // Waechter and Binder's absolute offsets, scaled to the scene
     Vec3 cameraFrom_, cameraX_, cameraY_, cameraZ_;
     Real focal_;
 };

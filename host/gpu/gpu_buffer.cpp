@@ -1,22 +1,51 @@
 #include "gpu/gpu_buffer.h"
 
+#include <cstdlib>
+#include <optional>
+#include <string>
+
 #include "common/error.h"
 #include "gpu/vulkan_error.h"
 
 namespace vitrum {
 namespace {
-std::string mebibytes(VkDeviceSize bytes) {
+
+// For tests only: VITRUM_MAX_BUFFER_BYTES=N lowers the storage buffer limit to N bytes (never
+// raises it), so that "does not fit the device" can be tested with a small scene
+// (tests/cli/bad_input_test.cpp).
+std::optional<VkDeviceSize> testBufferLimit() {
+    const char* text = std::getenv("VITRUM_MAX_BUFFER_BYTES");
+    if (!text || !*text) return std::nullopt;
+    char* end = nullptr;
+    unsigned long long value = std::strtoull(text, &end, 10);
+    if (*end != '\0') return std::nullopt;
+    return VkDeviceSize(value);
+}
+
+}  // namespace
+
+std::string describeBytes(VkDeviceSize bytes) {
+    if (bytes < (VkDeviceSize(1) << 20)) return std::to_string(bytes) + " bytes";
     return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
 }
-}  // namespace
+
+StorageBufferLimit storageBufferLimit(const VulkanDevice& device) {
+    StorageBufferLimit limit{device.properties().limits.maxStorageBufferRange, "maxStorageBufferRange"};
+    if (auto test = testBufferLimit(); test && *test < limit.bytes) limit = {*test, "VITRUM_MAX_BUFFER_BYTES"};
+    return limit;
+}
+
+InputError bufferTooLarge(const VulkanDevice& device, const std::string& what, VkDeviceSize size) {
+    StorageBufferLimit limit = storageBufferLimit(device);
+    return InputError("the scene does not fit the device: " + what + " needs " + describeBytes(size) + ", but " +
+                      device.name() + " allows " + describeBytes(limit.bytes) + " per storage buffer (" +
+                      limit.source + ")");
+}
 
 GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsageFlags usage, const std::string& what)
     : device_(device.device()), size_(size) {
-    const auto& limits = device.properties().limits;
-    if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && size > limits.maxStorageBufferRange)
-        throw InputError("the scene does not fit the device: " + what + " needs " + mebibytes(size) + ", but " +
-                         device.name() + " allows " + mebibytes(limits.maxStorageBufferRange) +
-                         " per storage buffer (maxStorageBufferRange)");
+    if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && size > storageBufferLimit(device).bytes)
+        throw bufferTooLarge(device, what, size);
     VkBufferCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
         .size = size,
@@ -39,7 +68,7 @@ GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsag
     VkDeviceMemory memory = VK_NULL_HANDLE;
     VkResult result = vkAllocateMemory(device_, &allocate, nullptr, &memory);
     if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
-        throw InputError("the scene does not fit the device: " + what + " needs " + mebibytes(size) +
+        throw InputError("the scene does not fit the device: " + what + " needs " + describeBytes(size) +
                          " and allocating it failed with " + vkResultName(result));
     VK_CHECK(result);
     memory_ = UniqueMemory(device_, memory);

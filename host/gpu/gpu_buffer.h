@@ -7,6 +7,7 @@
 #include <span>
 #include <string>
 
+#include "common/error.h"
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_handle.h"
 
@@ -27,6 +28,7 @@ public:
 
     template <class T>
     void upload(std::span<const T> data) {
+        if (data.empty()) return;  // an empty vector's data() may be null: memcpy must not see it
         std::memcpy(mapped_, data.data(), data.size_bytes());
     }
     template <class T>
@@ -41,6 +43,18 @@ private:
     VkDeviceSize size_ = 0;
     void* mapped_ = nullptr;
 };
+
+// The largest storage buffer the checks allow: the device's maxStorageBufferRange, or less where
+// the environment variable VITRUM_MAX_BUFFER_BYTES (for tests only) asks for less.
+struct StorageBufferLimit {
+    VkDeviceSize bytes;
+    const char* source;  // "maxStorageBufferRange" or "VITRUM_MAX_BUFFER_BYTES"
+};
+StorageBufferLimit storageBufferLimit(const VulkanDevice& device);
+// "N bytes" below 1 MiB, else "N MiB" (rounded up).
+std::string describeBytes(VkDeviceSize bytes);
+// "the scene does not fit the device: WHAT needs N MiB, but DEVICE allows M MiB per storage buffer (...)"
+InputError bufferTooLarge(const VulkanDevice& device, const std::string& what, VkDeviceSize size);
 
 // A storage buffer holding `data` (at least 16 bytes: Vulkan has no empty buffers). Checks the
 // size against the device's maxStorageBufferRange first.

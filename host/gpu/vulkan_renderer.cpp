@@ -8,6 +8,7 @@
 #include "gpu/gpu_layout.h"
 #include "gpu/trace_pipeline.h"
 #include "render/packed_scene.h"
+#include "render/scene_features.h"
 
 namespace vitrum {
 namespace {
@@ -91,10 +92,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     // tolerance as the CPU reference); with fewer than two glass objects nothing can touch.
     if (!bvh.nodes.empty())
         p.tuning.y = float(1e-5 * glm::length(glm::dvec3(bvh.nodes[0].boundsMax) - glm::dvec3(bvh.nodes[0].boundsMin)));
-    std::size_t glassObjects = 0;
-    for (std::uint32_t material : packed.objectMaterials)
-        if (scene.materials[material].model == MaterialModel::Glass) ++glassObjects;
-    p.tuning.z = glassObjects >= 2 ? 1.0f : 0.0f;
+    p.tuning.z = analyseScene(scene).touchingMediaPossible ? 1.0f : 0.0f;
     const std::uint32_t tilesX = (width + tileWidth - 1) / tileWidth;
     const std::uint32_t tilesY = (height + tileHeight - 1) / tileHeight;
     const std::uint32_t groupsX = (tileWidth + kTraceGroupSize - 1) / kTraceGroupSize;

@@ -151,6 +151,53 @@ Image readPfm(const fs::path& path) {
 
 // ---- stb ----------------------------------------------------------------------------------------
 
+// stb's PNM reader (P5, P6) accumulates header numbers in an int without an overflow check, which
+// is undefined behaviour for "P6 99999999999 ..." (found by fuzzing, tests/fuzz/regressions/image):
+// refuse a header number of more than 9 digits before stb reads it. Follows stb's tokenizer:
+// whitespace and '#' comments, then digits.
+void checkPnmHeader(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    char header[4096];
+    in.read(header, sizeof header);
+    const std::size_t size = std::size_t(in.gcount());
+    if (size < 2 || header[0] != 'P' || (header[1] != '5' && header[1] != '6')) return;
+    std::size_t pos = 2;
+    for (int number = 0; number < 3 && pos < size; ++number) {
+        while (pos < size && (std::isspace(static_cast<unsigned char>(header[pos])) || header[pos] == '#')) {
+            if (header[pos] == '#') {
+                while (pos < size && header[pos] != '\n' && header[pos] != '\r') ++pos;
+            } else {
+                ++pos;
+            }
+        }
+        std::size_t digits = 0;
+        while (pos < size && header[pos] >= '0' && header[pos] <= '9') ++digits, ++pos;
+        if (digits > 9) throw inputError(path, 0, "corrupt PNM file: a number in its header is too large");
+    }
+}
+
+// stb decodes whatever size a header declares, reading zeros past the end of a truncated file:
+// 137 bytes of TGA can ask for 256 x 65535 pixels (found by fuzzing, tests/fuzz/regressions/image).
+// So the declared size is checked first: at most 16384 pixels on a side (the largest image vitrum
+// renders), and at most 8192 pixels per byte of file beyond the first 2^20 pixels (about what the
+// densest deflate stream of a 1-bit PNG holds).
+void checkDeclaredSize(const fs::path& path) {
+    int w = 0;
+    int h = 0;
+    int n = 0;
+    if (!stbi_info(path.string().c_str(), &w, &h, &n)) return;  // stbi_load reports why
+    std::error_code ec;
+    const std::uintmax_t bytes = fs::file_size(path, ec);
+    const std::uint64_t pixels = std::uint64_t(std::max(w, 0)) * std::uint64_t(std::max(h, 0));
+    if (w > 16384 || h > 16384)
+        throw inputError(path, 0, "image too large: " + std::to_string(w) + "x" + std::to_string(h) +
+                                      " (at most 16384 pixels on a side)");
+    if (!ec && pixels > (std::uint64_t(1) << 20) + std::uint64_t(bytes) * 8192)
+        throw inputError(path, 0, "corrupt or truncated image: its header declares " + std::to_string(w) + "x" +
+                                      std::to_string(h) + " pixels, but the file has only " + std::to_string(bytes) +
+                                      " bytes");
+}
+
 Image readLinearHdr(const fs::path& path) {
     int w = 0;
     int h = 0;
@@ -279,6 +326,8 @@ Image readImage(const fs::path& path) {
     // .hdr is never gamma-converted by stb (and a .hdr that is not one is reported).
     const bool isHdr = stbi_is_hdr(path.string().c_str()) != 0;
     if (ext == ".hdr" && !isHdr) throw inputError(path, 0, "cannot read image: not a Radiance HDR file");
+    checkPnmHeader(path);
+    checkDeclaredSize(path);
     if (isHdr) return readLinearHdr(path);
     return readSrgb(path);
 }

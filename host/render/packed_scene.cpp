@@ -1,9 +1,18 @@
 #include "render/packed_scene.h"
 
+#include "cpu/ray_offset.h"
+
 #include <bit>
+#include <algorithm>
 #include <cmath>
 
 namespace vitrum {
+static_assert(std::uint32_t(BackgroundKind::Constant) == gpu::kBackgroundConstant &&
+              std::uint32_t(BackgroundKind::Spherical) == gpu::kBackgroundSpherical &&
+              std::uint32_t(BackgroundKind::Cube) == gpu::kBackgroundCube);
+static_assert(std::uint32_t(TextureFilter::Bilinear) == gpu::kFilterBilinear &&
+              std::uint32_t(TextureFilter::Nearest) == gpu::kFilterNearest);
+
 namespace {
 float bits(std::uint32_t value) { return std::bit_cast<float>(value); }
 }  // namespace
@@ -35,8 +44,8 @@ PackedScene packScene(const Scene& scene, const Bvh& bvh) {
     for (const PointLight& light : scene.lights)
         packed.lights.push_back({glm::vec4(light.position, light.inverseSquare ? 1.0f : 0.0f), glm::vec4(light.colour, 0.0f)});
     for (const Texture& texture : scene.textures) {
-        packed.textures.push_back({glm::uvec4(packed.texels.size(), texture.width, texture.height, 0)});
-        for (const glm::vec3& texel : texture.texels) packed.texels.emplace_back(texel, 0.0f);
+        packed.textures.push_back({glm::uvec4(packed.texels.size() / 3, texture.width, texture.height, 0)});
+        for (const glm::vec3& texel : texture.texels) packed.texels.insert(packed.texels.end(), {texel.x, texel.y, texel.z});
     }
     constexpr std::uint32_t kUnset = 0xFFFFFFFFu;
     packed.objectMaterials.assign(scene.objectNames.size(), kUnset);
@@ -75,8 +84,10 @@ gpu::RenderParams makeRenderParams(const Scene& scene) {
     p.counts = glm::uvec4(scene.lights.size(), std::uint32_t(s.fresnel), scene.textures.size(), 0);
     p.pass = glm::uvec4(1, sampleGridColumns(s.samplesPerPixel), 0, 0);
     p.tuning = glm::vec4(s.minWeight, 0.0f, 0.0f, 0.0f);
-    p.environment = glm::uvec4(gpu::kBackgroundConstant, gpu::kFilterBilinear, 0, 0);
-    p.offsets = glm::vec4(1.0f / 32.0f, 1.0f / 65536.0f, 0.0f, 0.0f);  // Waechter and Binder's constants
+    p.environment = glm::uvec4(std::uint32_t(scene.background.kind), std::uint32_t(s.filter),
+                               std::uint32_t(std::max(scene.background.map, 0)), 0);
+    const RayOffsetScale offsets = rayOffsetScale(scene.triangles);  // Waechter and Binder's, scaled to the scene
+    p.offsets = glm::vec4(offsets.origin, offsets.absolute, 0.0f, 0.0f);
     return p;
 }
 

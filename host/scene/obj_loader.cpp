@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <string_view>
@@ -81,6 +82,26 @@ ObjScan scanObj(const fs::path& file, std::string_view text) {
                     throw inputError(file, lineNumber,
                                      "vertex coordinate " + quoteInput(number) + " is not a finite number");
                 rest = rest.substr(numberEnd);
+            }
+        } else if (word == "f") {
+            // tinyobjloader reads indices with atoi: one beyond the int range wraps around to an
+            // index that may be valid ("4294967299" is vertex 3).
+            for (std::string_view rest = line.substr(wordEnd);;) {
+                std::size_t cornerEnd = 0;
+                std::string_view corner = firstWord(rest, &cornerEnd);
+                if (corner.empty()) break;
+                for (std::size_t part = 0; part <= corner.size();) {
+                    std::size_t slash = std::min(corner.find('/', part), corner.size());
+                    std::string_view index = corner.substr(part, slash - part);
+                    if (!index.empty() && index.front() == '+') index.remove_prefix(1);
+                    long long value = 0;
+                    auto [ptr, ec] = std::from_chars(index.data(), index.data() + index.size(), value);
+                    if (ec == std::errc::result_out_of_range || value > std::numeric_limits<int>::max() ||
+                        value < -std::numeric_limits<int>::max())
+                        throw inputError(file, lineNumber, "face index " + quoteInput(index) + " is out of range");
+                    part = slash + 1;
+                }
+                rest = rest.substr(cornerEnd);
             }
         } else if (word == "mtllib") {
             scan.hasMtllib = true;

@@ -75,7 +75,7 @@ struct GpuMaterial {
     vec4 attenuation;
 };
 
-// A texture is a run of texels (linear RGB in .xyz) in the texel buffer.
+// A texture is a run of texels in the texel buffer (linear RGB, three packed floats a texel).
 //   x = first texel, y = width, z = height, w = unused
 struct TextureInfo {
     uvec4 offsetAndSize;
@@ -116,6 +116,7 @@ struct RenderParams {
                        // the region around the origin where offsets are absolute, y = that offset
 };
 
+// Numbered like vitrum::BackgroundKind and vitrum::TextureFilter.
 VITRUM_CONST uint kBackgroundConstant = 0u;
 VITRUM_CONST uint kBackgroundSpherical = 1u;
 VITRUM_CONST uint kBackgroundCube = 2u;

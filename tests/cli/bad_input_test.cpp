@@ -1,0 +1,283 @@
+// Bad input never hurts, end to end through the `vitrum` binary: for each kind of bad input (OBJ,
+// MTL, JSON scene, image, path, a scene too large for the device) the command exits with 1, its
+// message names the file (and the line where there is one), and no output file is left behind.
+// Unknown keys and unreadable textures are the exceptions that only warn.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandRun {
+    int exitCode;  // -1 when the command died of a signal
+    std::string output;  // stdout and stderr together
+};
+
+// `environment` ("NAME=VALUE ...") goes in front of the command.
+CommandRun vitrum(const std::string& arguments, const std::string& environment = "") {
+    std::string command = environment + " " + std::string(VITRUM_BINARY) + " " + arguments + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return {-1, "popen failed"};
+    std::string output;
+    std::array<char, 4096> buffer;
+    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
+    int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+std::string randomBytes(std::size_t count, unsigned seed) {
+    std::mt19937 random(seed);
+    std::string bytes(count, '\0');
+    for (char& b : bytes) b = char(random() & 0xff);
+    return bytes;
+}
+
+const std::string kGeosphere = std::string(VITRUM_SHARED_DIR) + "/scenes/course/geosphere/geosphere.obj";
+const std::string kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+
+class CliBadInput : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("vitrum-bad-input-" + std::to_string(::getpid()) + "-" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        write("tri.obj", kTriangle);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::string write(const std::string& name, const std::string& contents) const {
+        std::ofstream(dir_ / name, std::ios::binary) << contents;
+        return path(name);
+    }
+    // A scene file whose line 2 is `secondLine` (line 1 names tri.obj).
+    std::string scene(const std::string& secondLine, const std::string& name = "scene.json") const {
+        return write(name, "{\"objects\": [{\"obj\": \"tri.obj\"}],\n" + secondLine + "\n}\n");
+    }
+
+    // Renders `arguments` to out.png and expects a refusal: exit code 1, an error message with each
+    // of `parts`, and no out.png (nor a temporary file next to it).
+    void expectRefused(const std::string& arguments, std::initializer_list<std::string> parts,
+                       const std::string& environment = "") const {
+        CommandRun r = vitrum("render " + arguments + " -o " + path("out.png"), environment);
+        EXPECT_EQ(r.exitCode, 1) << arguments << "\n" << r.output;
+        EXPECT_NE(r.output.find("vitrum: error: "), std::string::npos) << arguments << "\n" << r.output;
+        for (const std::string& part : parts)
+            EXPECT_NE(r.output.find(part), std::string::npos) << arguments << ": no \"" << part << "\" in\n" << r.output;
+        expectNoOutput();
+    }
+    void expectNoOutput() const {
+        for (const auto& entry : fs::directory_iterator(dir_))
+            EXPECT_NE(entry.path().filename().string().rfind("out", 0), 0u) << entry.path() << " was left behind";
+    }
+
+    fs::path dir_;
+};
+
+// ------------------------------------------------------------------------------------ OBJ, MTL
+
+TEST_F(CliBadInput, MalformedObjNamesFileAndLine) {
+    expectRefused(write("bad.obj", "# a comment\nv 0 0 0\nv 1 x 0\nv 0 1 0\nf 1 2 3\n"),
+                  {"bad.obj:3:", "v expects three numbers"});
+}
+
+TEST_F(CliBadInput, TruncatedObjNamesFileAndLine) {
+    expectRefused(write("cut.obj", "v 0 0 0\nv 1 0 0\nv 0 1"), {"cut.obj:3:", "v expects three numbers"});
+    expectRefused(write("cut_face.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2"), {"cut_face.obj"});
+}
+
+TEST_F(CliBadInput, EmptyFilesAreErrors) {
+    expectRefused(write("empty.obj", ""), {"empty.obj", "contains no triangles"});
+    expectRefused(write("empty.json", ""), {"empty.json:1:", "invalid JSON"});
+    expectRefused(write("blank.json", "\n\n  \n"), {"blank.json", "invalid JSON"});
+}
+
+TEST_F(CliBadInput, BinaryGarbageIsAnError) {
+    for (unsigned seed : {1u, 2u, 3u}) {
+        expectRefused(write("garbage.obj", randomBytes(4096, seed)), {"garbage.obj"});
+        expectRefused(write("garbage.json", randomBytes(4096, seed)), {"garbage.json", "invalid JSON"});
+    }
+    // Garbage after a Kd key: the number is malformed at line 2.
+    write("m.obj", "mtllib garbage.mtl\nusemtl a\n" + kTriangle);
+    write("garbage.mtl", "newmtl a\nKd " + randomBytes(4096, 4));
+    expectRefused(path("m.obj"), {"garbage.mtl:2:", "Kd"});
+}
+
+TEST_F(CliBadInput, HugeFaceIndicesAreErrors) {
+    const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    // Beyond the int range: tinyobjloader would wrap "4294967299" around to vertex 3.
+    for (const char* face : {"f 1 2 4294967296", "f 1 2 4294967299", "f 1 2 99999999999999999999999",
+                             "f 1 2 -2147483648", "f 1/99999999999 2 3", "f 1//-4294967297 2 3"}) {
+        expectRefused(write("huge.obj", vertices + face + "\n"), {"huge.obj:4:", "face index", "out of range"});
+    }
+    // In the int range, beyond the file's vertices.
+    expectRefused(write("huge.obj", vertices + "f 1 2 2147483647\n"), {"huge.obj", "index 2147483647"});
+    expectRefused(write("huge.obj", vertices + "f 1 2 -2147483647\n"), {"huge.obj", "before the first"});
+}
+
+TEST_F(CliBadInput, MalformedMtlNamesFileAndLine) {
+    write("m.obj", "mtllib bad.mtl\nusemtl a\n" + kTriangle);
+    write("bad.mtl", "newmtl a\nshader 4\nKd 0.5 x 0.2\n");
+    expectRefused(path("m.obj"), {"bad.mtl:3:", "Kd expects three numbers"});
+    write("bad.mtl", "newmtl a\nNi one\n");
+    expectRefused(path("m.obj"), {"bad.mtl:2:", "Ni"});
+}
+
+TEST_F(CliBadInput, NonFiniteCoordinatesAreErrors) {
+    for (const char* bad : {"inf", "-inf", "nan", "1e39"}) {
+        std::string obj = write("inf.obj", std::string("v 0 0 0\nv 1 ") + bad + " 0\nv 0 1 0\nf 1 2 3\n");
+        expectRefused(obj, {"inf.obj:2:", "not a finite number"});
+    }
+    // Finite in the file, not after the transform.
+    expectRefused(scene(R"("camera": {"from": [0, -5, 0], "at": [0, 0, 0]},
+ "lights": [], "objects": [{"obj": "tri.obj", "transform": {"scale": 1e38, "translate": [3e38, 0, 0]}}])"),
+                  {"tri.obj", "not finite after the transform"});
+    // JSON has no NaN or infinity; a number too large for a double is refused by the JSON parser
+    // (nlohmann's out-of-range error has no position: the message names the file only).
+    expectRefused(scene(R"("camera": {"from": [1e999, 0, 0], "at": [0, 0, 0]})"), {"scene.json", "1e999"});
+    expectRefused(scene(R"("lights": [{"position": [0, -1e400, 0]}])"), {"scene.json", "1e400"});
+    // Finite as a double, not as a float.
+    expectRefused(scene(R"("camera": {"from": [1e39, 0, 0], "at": [0, 0, 0]})"), {"scene.json:2:", "from"});
+    expectRefused(kGeosphere + " --camera-from nan,0,0", {"--camera-from"});
+    expectRefused(kGeosphere + " --light 0,inf,0", {"--light"});
+}
+
+// ------------------------------------------------------------------------------------ JSON
+
+TEST_F(CliBadInput, WrongTypesNameFileAndLine) {
+    expectRefused(scene(R"("camera": {"from": [0, -5, 0], "at": [0, 0, 0], "fov_y": "wide"})"),
+                  {"scene.json:2:", "fov_y", "\"wide\""});
+    expectRefused(scene(R"("render": {"spp": "many"})"), {"scene.json:2:", "spp"});
+    expectRefused(scene(R"("render": {"max_depth": 2.5})"), {"scene.json:2:", "max_depth"});
+    expectRefused(scene(R"("lights": {"position": [0, 0, 0]})"), {"scene.json:2:", "lights"});
+    expectRefused(scene(R"("background": {"colour": "red"})"), {"scene.json:2:", "colour"});
+    expectRefused(scene(R"("air_ior": true)"), {"scene.json:2:", "air_ior"});
+    expectRefused(write("s.json", "{\n\"objects\": \"tri.obj\"\n}\n"), {"s.json:2:", "objects"});
+    expectRefused(write("s.json", "[\"tri.obj\"]\n"), {"s.json", "object"});
+}
+
+TEST_F(CliBadInput, MissingFieldsAreErrors) {
+    expectRefused(write("s.json", "{\n\"camera\": {\"from\": [0, -5, 0], \"at\": [0, 0, 0]}\n}\n"),
+                  {"s.json", "\"objects\""});
+    expectRefused(scene(R"("camera": {"at": [0, 0, 0]})"), {"scene.json:2:", "\"from\""});
+    expectRefused(scene(R"("lights": [{"colour": [1, 1, 1]}])"), {"scene.json:2:", "position"});
+    expectRefused(write("s.json", "{\n\"objects\": [{\"mtl\": \"tri.mtl\"}]\n}\n"), {"s.json:2:", "obj"});
+}
+
+TEST_F(CliBadInput, AbsurdValuesInTheSceneFileNameTheKey) {
+    const std::string camera = R"("camera": {"from": [0, -5, 0], "at": [0, 0, 0], )";
+    struct Case {
+        std::string line, key;
+    };
+    for (const Case& c : {Case{camera + R"("fov_y": 0})", "fov_y"}, Case{camera + R"("fov_y": 180})", "fov_y"},
+                          Case{camera + R"("width": 0})", "width"}, Case{camera + R"("width": 1000000})", "width"},
+                          Case{camera + R"("height": -3})", "height"}, Case{R"("render": {"max_depth": -1})", "max_depth"},
+                          Case{R"("render": {"spp": 0})", "spp"}, Case{R"("render": {"spp": 1e9})", "spp"},
+                          Case{R"("air_ior": 0)", "air_ior"}, Case{R"("render": {"min_weight": -1})", "min_weight"}}) {
+        expectRefused(scene(c.line), {"scene.json:2:", c.key});
+    }
+}
+
+TEST_F(CliBadInput, AbsurdValuesOnTheCommandLineNameTheOption) {
+    for (std::string option : {"--width 0", "--height 0", "--width 1000000", "--spp 0", "--max-depth -1",
+                               "--fov 0", "--fov 180", "--spp 1e3", "--threads 0", "--tile 1"}) {
+        expectRefused(kGeosphere + " --backend cpu " + option, {option.substr(0, option.find(' '))});
+    }
+}
+
+TEST_F(CliBadInput, UnknownKeysOnlyWarn) {
+    std::string json = scene(R"("rendr": {"spp": 4}, "objects_extra": 1)");
+    CommandRun r = vitrum("render " + json + " --backend cpu --width 8 --height 8 -o " + path("out.png"));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("vitrum: warning: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("scene.json:2:"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("rendr"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(path("out.png")));
+}
+
+// ------------------------------------------------------------------------------------ images
+
+TEST_F(CliBadInput, CorruptOrUnknownImagesAreErrorsNamingTheFile) {
+    write("sky.hdr", randomBytes(2000, 5));
+    expectRefused(scene(R"("background": {"spherical": "sky.hdr"})"), {"sky.hdr", "cannot read image"});
+    write("sky.png", std::string("\x89PNG\r\n\x1a\n", 8) + randomBytes(500, 6));
+    expectRefused(scene(R"("background": {"spherical": "sky.png"})"), {"sky.png"});
+    write("sky.exr", randomBytes(500, 7));
+    expectRefused(scene(R"("background": {"spherical": "sky.exr"})"), {"sky.exr", "OpenEXR is not supported"});
+    write("sky.xyz", randomBytes(500, 8));
+    expectRefused(scene(R"("background": {"cube_cross": "sky.xyz"})"), {"sky.xyz"});
+    write("sky.pfm", "PF\n4 3\n-1.0\n" + std::string(20, '\0'));  // truncated raster
+    expectRefused(scene(R"("background": {"spherical": "sky.pfm"})"), {"sky.pfm", "corrupt PFM"});
+
+    // `vitrum diff` with a corrupt or unknown image writes no heat map.
+    std::string good = write("good.pfm", "PF\n1 1\n-1.0\n" + std::string(12, '\0'));
+    for (std::string bad : {"sky.hdr", "sky.png", "sky.exr", "sky.xyz", "sky.pfm"}) {
+        CommandRun r = vitrum("diff " + path(bad) + " " + good + " --heatmap " + path("out_heat.png"));
+        EXPECT_EQ(r.exitCode, 1) << bad << "\n" << r.output;
+        EXPECT_NE(r.output.find(path(bad)), std::string::npos) << r.output;
+        expectNoOutput();
+    }
+}
+
+TEST_F(CliBadInput, UnreadableTextureOnlyWarns) {
+    write("m.obj", "mtllib m.mtl\nusemtl a\nvt 0 0\n" + kTriangle);
+    write("m.mtl", "newmtl a\nshader 2\nKd 0.5\nmap_Kd corrupt.png\n");
+    write("corrupt.png", randomBytes(300, 9));
+    CommandRun r = vitrum("render " + path("m.obj") + " --backend cpu --width 8 --height 8 -o " + path("out.png"));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("m.mtl:4:"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("corrupt.png"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(path("out.png")));
+}
+
+// ------------------------------------------------------------------------------------ paths
+
+TEST_F(CliBadInput, PathsThatDoNotExistAreNamed) {
+    expectRefused(path("missing.obj"), {"missing.obj"});
+    expectRefused(path("missing.json"), {"missing.json"});
+    expectRefused(path("no_dir/scene.json"), {"no_dir/scene.json"});
+    expectRefused(write("s.json", "{\n\"objects\": [\n{\"obj\": \"nope.obj\"}]}"), {"s.json:3:", "nope.obj"});
+    expectRefused(write("s.json", "{\"objects\": [\n{\"obj\": \"tri.obj\",\n \"mtl\": \"nope.mtl\"}]}"),
+                  {"s.json:3:", "nope.mtl"});
+    expectRefused(scene(R"("background": {"spherical": "nope.hdr"})"), {"nope.hdr"});
+    fs::create_directories(dir_ / "folder.json");
+    expectRefused(path("folder.json"), {"folder.json"});
+    expectRefused(write("scene.txt", "{}"), {"scene.txt", "unknown scene format"});
+
+    CommandRun r = vitrum("diff " + path("nope.png") + " " + path("nope2.pfm"));
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("nope.png"), std::string::npos) << r.output;
+    r = vitrum("info " + path("nope.obj"));
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("nope.obj"), std::string::npos) << r.output;
+}
+
+// ------------------------------------------------------------------------------------ device limits
+
+// VITRUM_MAX_BUFFER_BYTES (for tests only, host/gpu/gpu_buffer.cpp) lowers the storage buffer
+// limit: the scene is refused from its counts, before the BVH build, naming the buffer and the limit.
+TEST_F(CliBadInput, SceneTooLargeForTheDeviceIsRefusedEarly) {
+    // The geosphere's 1280 triangles need 80 KiB of BVH nodes at most: the first buffer checked.
+    expectRefused(kGeosphere + " --width 16 --height 16 --stats " + path("out.json"),
+                  {"does not fit the device", "BVH nodes needs 81920 bytes", "allows 4096 bytes",
+                   "VITRUM_MAX_BUFFER_BYTES"},
+                  "VITRUM_MAX_BUFFER_BYTES=4096");
+    // The geometry fits 1 MB; a 2000 x 1000 image of 16-byte pixels does not.
+    expectRefused(kGeosphere + " --width 2000 --height 1000", {"image needs 31 MiB", "allows 1000000 bytes"},
+                  "VITRUM_MAX_BUFFER_BYTES=1000000");
+    // The CPU backend has no such limit.
+    CommandRun r = vitrum("render " + kGeosphere + " --backend cpu --width 8 --height 8 -o " + path("out.png"),
+                          "VITRUM_MAX_BUFFER_BYTES=4096");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
+}  // namespace

@@ -1,0 +1,116 @@
+#include "fuzz_targets.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <string_view>
+
+#include "common/error.h"
+#include "image/image.h"
+#include "scene/scene_loader.h"
+
+namespace vitrum {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A folder of this process's own under the system's temporary folder, removed at exit (a crash
+// leaves it behind: its name carries the process id).
+class FuzzFolder {
+public:
+    FuzzFolder() : path_(fs::temp_directory_path() / ("vitrum-fuzz-" + std::to_string(::getpid()))) {
+        fs::create_directories(path_);
+    }
+    ~FuzzFolder() {
+        std::error_code ignored;
+        fs::remove_all(path_, ignored);
+    }
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+};
+
+const fs::path& folder() {
+    static FuzzFolder folder;
+    return folder.path();
+}
+
+fs::path writeFile(const std::string& name, std::string_view bytes) {
+    fs::path file = folder() / name;
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+    return file;
+}
+
+void removeFile(const std::string& name) {
+    std::error_code ignored;
+    fs::remove(folder() / name, ignored);
+}
+
+std::string_view asText(const std::uint8_t* data, std::size_t size) {
+    return size ? std::string_view(reinterpret_cast<const char*>(data), size) : std::string_view();
+}
+
+}  // namespace
+
+int fuzzObjMtl(const std::uint8_t* data, std::size_t size) {
+    std::string_view bytes = asText(data, size);
+    std::size_t split = bytes.find('\0');
+    writeFile("fuzz.obj", bytes.substr(0, split));
+    if (split == std::string_view::npos)
+        removeFile("fuzz.mtl");
+    else
+        writeFile("fuzz.mtl", bytes.substr(split + 1));
+    try {
+        loadScene(folder() / "fuzz.obj");
+    } catch (const InputError&) {
+    }
+    return 0;
+}
+
+int fuzzSceneJson(const std::uint8_t* data, std::size_t size) {
+    static const bool triangleWritten = [] {
+        writeFile("tri.obj",
+                  "mtllib tri.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\nusemtl glass\nf 1/1/1 2/1/1 3/1/1\n");
+        writeFile("tri.mtl", "newmtl glass\nshader 4\nNi 1.5\nTf 0.1 0.2 0.3\nKd 0.5\n");
+        // Background maps: a 4x3 PFM (a valid cube cross and equirectangular map) and a 1x1 face.
+        auto pfm = [](int width, int height) {
+            std::string bytes = "PF\n" + std::to_string(width) + " " + std::to_string(height) + "\n-1.0\n";
+            const float grey = 0.5f;
+            for (int i = 0; i < width * height * 3; ++i) bytes.append(reinterpret_cast<const char*>(&grey), 4);
+            return bytes;
+        };
+        writeFile("sky.pfm", pfm(4, 3));
+        writeFile("face.pfm", pfm(1, 1));
+        return true;
+    }();
+    (void)triangleWritten;
+    writeFile("scene.json", asText(data, size));
+    try {
+        loadScene(folder() / "scene.json");
+    } catch (const InputError&) {
+    }
+    return 0;
+}
+
+int fuzzImage(const std::uint8_t* data, std::size_t size) {
+    std::string_view bytes = asText(data, size);
+    std::string name = "fuzz.png";
+    if (bytes.starts_with("PF") || bytes.starts_with("Pf"))
+        name = "fuzz.pfm";
+    else if (bytes.starts_with("#?"))
+        name = "fuzz.hdr";
+    fs::path file = writeFile(name, bytes);
+    try {
+        readImage(file);
+    } catch (const InputError&) {
+    }
+    removeFile(name);
+    return 0;
+}
+
+}  // namespace vitrum
