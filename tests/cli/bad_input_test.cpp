@@ -12,26 +12,14 @@
 
 #include <gtest/gtest.h>
 
+#include "cli_support.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandRun {
-    int exitCode;  // -1 when the command died of a signal
-    std::string output;  // stdout and stderr together
-};
-
-// `environment` ("NAME=VALUE ...") goes in front of the command.
-CommandRun vitrum(const std::string& arguments, const std::string& environment = "") {
-    std::string command = environment + " " + std::string(VITRUM_BINARY) + " " + arguments + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return {-1, "popen failed"};
-    std::string output;
-    std::array<char, 4096> buffer;
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
-    int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using vitrum::testing::CommandRun;
+using vitrum::testing::vitrum;
 
 std::string randomBytes(std::size_t count, unsigned seed) {
     std::mt19937 random(seed);
@@ -43,22 +31,13 @@ std::string randomBytes(std::size_t count, unsigned seed) {
 const std::string kGeosphere = std::string(VITRUM_SHARED_DIR) + "/scenes/course/geosphere/geosphere.obj";
 const std::string kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 
-class CliBadInput : public ::testing::Test {
+class CliBadInput : public vitrum::testing::CliTest {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("vitrum-bad-input-" + std::to_string(::getpid()) + "-" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        CliTest::SetUp();
         write("tri.obj", kTriangle);
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-    std::string write(const std::string& name, const std::string& contents) const {
-        std::ofstream(dir_ / name, std::ios::binary) << contents;
-        return path(name);
-    }
     // A scene file whose line 2 is `secondLine` (line 1 names tri.obj).
     std::string scene(const std::string& secondLine, const std::string& name = "scene.json") const {
         return write(name, "{\"objects\": [{\"obj\": \"tri.obj\"}],\n" + secondLine + "\n}\n");
@@ -79,8 +58,6 @@ protected:
         for (const auto& entry : fs::directory_iterator(dir_))
             EXPECT_NE(entry.path().filename().string().rfind("out", 0), 0u) << entry.path() << " was left behind";
     }
-
-    fs::path dir_;
 };
 
 // ------------------------------------------------------------------------------------ OBJ, MTL

@@ -7,6 +7,8 @@
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "cli_support.h"
 #include <nlohmann/json.hpp>
 
 #include "image/image.h"
@@ -16,37 +18,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandRun {
-    int exitCode;
-    std::string output;  // stdout and stderr together
-};
-
-CommandRun vitrum(const std::string& arguments) {
-    std::string command = std::string(VITRUM_BINARY) + " " + arguments + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return {-1, "popen failed"};
-    std::string output;
-    std::array<char, 4096> buffer;
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
-    int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
-
-class Cli : public ::testing::Test {
-protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("vitrum-cli-" + std::to_string(::getpid()) + "-" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-    std::string write(const std::string& name, const std::string& contents) const {
-        std::ofstream(dir_ / name) << contents;
-        return path(name);
-    }
-    fs::path dir_;
-};
+using vitrum::testing::CommandRun;
+using vitrum::testing::vitrum;
+using Cli = vitrum::testing::CliTest;
 
 const std::string kGeosphere = std::string(VITRUM_SHARED_DIR) + "/scenes/course/geosphere/geosphere.obj";
 
