@@ -10,7 +10,7 @@
 float offsetComponent(float p, float n) {
     float originRegion = params.offsets.x;
     float absoluteOffset = params.offsets.y;
-    const float kIntScale = 256.0;
+    const float kIntScale = 32.0;
     int offsetInt = int(kIntScale * n);
     float pInt = intBitsToFloat(floatBitsToInt(p) + (p < 0.0 ? -offsetInt : offsetInt));
     return abs(p) < originRegion ? p + absoluteOffset * n : pInt;

@@ -7,21 +7,23 @@
 // of about unit size: a scene 1e-3 across lies wholly inside the origin region and gets offsets of
 // 1.5% of its size, one 1e3 across gets offsets below the rounding of its hit points. So both are
 // scaled with the scene's extent E (the longest side of the bounding box of its triangles):
-//   - origin region E / 32: the chapter's for E = 1. Outside it the relative offset, 256 ulps of
-//     |p| >= 2^-16 |p|, is at least 2^-21 E, above the error of an interpolated hit point along the
-//     normal (about 4 float roundings of the triangle's largest coordinate, <= 2^-22 E);
-//   - absolute offset E / 2^20: exactly 256 ulps of E / 32 when E is a power of two, so the offset
-//     does not jump at the region's edge, and still 4x the 2^-22 E error bound. The chapter's
-//     1/65536 is 16x more at E = 1; we do not take that extra margin because every restart inside
-//     an absorbing medium loses mu x offset of path (the touching-boxes reference test sees it).
+//   - origin region E / 32: the chapter's for E = 1;
+//   - outside it the offset is 32 ulps of each coordinate (the chapter uses 256): at least
+//     2^-19 |p| >= 2^-24 E, 8x the error of an interpolated hit point along the normal
+//     (about 4 float roundings, <= 2^-22 |p|), and 8x closer to the surface than the chapter's,
+//     which matters far from the origin: a scene moved 1e4 units away (ulps of 1e-3) would
+//     otherwise restart its rays 0.25 units off the surface (docs/hard-cases.md);
+//   - absolute offset E / 2^23: exactly 32 ulps of E / 32 when E is a power of two, so the offset
+//     does not jump at the region's edge. Small offsets also keep what every restart inside an
+//     absorbing medium loses (mu x offset of path) negligible.
 // Both are exact scalings of E, so a scene scaled by s gets offsets scaled by s (exactly for a
 // power of two). The host passes the same two numbers to the GPU in RenderParams.offsets
 // (makeRenderParams). RayOffsetScale{} keeps the chapter's own constants.
 //
 // float: the chapter's method, the same arithmetic as shaders/ray_offset.glsl.
 // double: the same method on the double's bits. The hit point of a double render carries errors of
-// double ulps, so the offset is 256 double ulps (and the near-origin offset is scaled down by the
-// 2^29 between the two mantissas) instead of 256 float ulps: the double render stays the closer
+// double ulps, so the offset is 32 double ulps (and the near-origin offset is scaled down by the
+// 2^29 between the two mantissas) instead of 32 float ulps: the double render stays the closer
 // approximation of the exact image rather than inheriting float's offsets.
 #pragma once
 
@@ -56,7 +58,7 @@ inline RayOffsetScale rayOffsetScale(std::span<const Triangle> triangles) {
     const glm::vec3 size = hi - lo;
     float extent = std::max(size.x, std::max(size.y, size.z));
     if (triangles.empty() || !(extent > 0.0f) || !std::isfinite(extent)) extent = 1.0f;
-    return {extent / 32.0f, extent / 1048576.0f};
+    return {extent / 32.0f, extent / 8388608.0f};
 }
 
 namespace detail {
@@ -64,7 +66,7 @@ namespace detail {
 inline float offsetComponent(float p, float n, const RayOffsetScale& scale) {
     const float kOrigin = scale.origin;
     const float kFloatScale = scale.absolute;
-    constexpr float kIntScale = 256.0f;
+    constexpr float kIntScale = 32.0f;
     const auto offsetInt = static_cast<std::int32_t>(kIntScale * n);
     const std::int32_t bits = std::bit_cast<std::int32_t>(p);
     // Unsigned arithmetic: the bit pattern is an integer that may wrap, not a signed overflow.
@@ -76,7 +78,7 @@ inline float offsetComponent(float p, float n, const RayOffsetScale& scale) {
 inline double offsetComponent(double p, double n, const RayOffsetScale& scale) {
     const double kOrigin = double(scale.origin);
     const double kFloatScale = double(scale.absolute) / 536870912.0;  // float's offset / 2^29
-    constexpr double kIntScale = 256.0;
+    constexpr double kIntScale = 32.0;
     const auto offsetInt = static_cast<std::int64_t>(kIntScale * n);
     const std::int64_t bits = std::bit_cast<std::int64_t>(p);
     const auto moved = static_cast<std::uint64_t>(bits) + static_cast<std::uint64_t>(p < 0.0 ? -offsetInt : offsetInt);

@@ -283,7 +283,7 @@ TEST(HardCaseSelfIntersection, SecondaryRaysNeverReHitTheirSurfaceAtAnyScale) {
 }
 
 TEST(HardCaseSelfIntersection, OffsetConstantsFollowTheSceneExtent) {
-    // Extent E: region E / 32 (the chapter's for E = 1), offset E / 2^20 = 256 ulps of E / 32;
+    // Extent E: region E / 32 (the chapter's for E = 1), offset E / 2^23 = 32 ulps of E / 32;
     // exact multiples for a power-of-two scale, within float rounding for any other; a
     // translation does not change them.
     std::vector<Triangle> unit = triangles(gridCube(1));  // [-1, 1]^3: extent 2
@@ -291,17 +291,17 @@ TEST(HardCaseSelfIntersection, OffsetConstantsFollowTheSceneExtent) {
         for (glm::vec3& p : t.position) p *= 0.5f;  // extent 1
     const RayOffsetScale one = rayOffsetScale(unit);
     EXPECT_EQ(one.origin, 1.0f / 32.0f);
-    EXPECT_EQ(one.absolute, 1.0f / 1048576.0f);
-    // Continuous at the region's edge: the absolute offset is the relative one (256 ulps) there.
+    EXPECT_EQ(one.absolute, 1.0f / 8388608.0f);
+    // Continuous at the region's edge: the absolute offset is the relative one (32 ulps) there.
     const float edge = one.origin;
-    EXPECT_EQ(std::bit_cast<float>(std::bit_cast<std::uint32_t>(edge) + 256u) - edge, one.absolute);
+    EXPECT_EQ(std::bit_cast<float>(std::bit_cast<std::uint32_t>(edge) + 32u) - edge, one.absolute);
     for (float s : {1e-3f, 1e3f, 0.25f}) {
         std::vector<Triangle> scaled = unit;
         for (Triangle& t : scaled)
             for (glm::vec3& p : t.position) p *= s;
         const RayOffsetScale o = rayOffsetScale(scaled);
         EXPECT_FLOAT_EQ(o.origin, s / 32.0f);
-        EXPECT_FLOAT_EQ(o.absolute, s / 1048576.0f);
+        EXPECT_FLOAT_EQ(o.absolute, s / 8388608.0f);
     }
     std::vector<Triangle> moved = unit;
     for (Triangle& t : moved)
