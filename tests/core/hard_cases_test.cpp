@@ -3,6 +3,8 @@
 // triangles, and the scene-scaled ray offsets. The GPU halves are in tests/gpu/hard_cases_test.cpp.
 #include <gtest/gtest.h>
 
+#include "../support/test_meshes.h"
+
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -35,35 +37,10 @@ struct Mesh {
     std::vector<glm::uvec3> faces;
 };
 
-// Icosahedron subdivided `levels` times, on the unit sphere (positions computed in double and
-// rounded once), scaled by `radius` and moved to `centre` in float.
+// The shared test icosphere as this file's Mesh.
 Mesh icosphere(int levels, float radius = 1.0f, glm::vec3 centre = glm::vec3(0.0f)) {
-    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    std::vector<glm::dvec3> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
-                                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
-    for (glm::dvec3& p : v) p = glm::normalize(p);
-    std::vector<glm::uvec3> f = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-    for (int level = 0; level < levels; ++level) {
-        std::map<std::pair<unsigned, unsigned>, unsigned> midpoints;
-        auto midpoint = [&](unsigned a, unsigned b) {
-            const auto key = std::minmax(a, b);
-            auto [it, inserted] = midpoints.try_emplace(key, unsigned(v.size()));
-            if (inserted) v.push_back(glm::normalize(v[a] + v[b]));
-            return it->second;
-        };
-        std::vector<glm::uvec3> next;
-        for (const glm::uvec3& tri : f) {
-            const unsigned ab = midpoint(tri.x, tri.y), bc = midpoint(tri.y, tri.z), ca = midpoint(tri.z, tri.x);
-            next.insert(next.end(), {{tri.x, ab, ca}, {tri.y, bc, ab}, {tri.z, ca, bc}, {ab, bc, ca}});
-        }
-        f = std::move(next);
-    }
-    Mesh mesh;
-    for (const glm::dvec3& p : v) mesh.vertices.push_back(glm::vec3(p) * radius + centre);
-    mesh.faces = f;
-    return mesh;
+    testing::IndexedMesh shared = testing::icosphere(levels, radius, centre);
+    return Mesh{std::move(shared.vertices), std::move(shared.faces)};
 }
 
 // A cube [-1, 1]^3 whose faces are n x n grids of quads, two triangles each, outward wound.

@@ -11,6 +11,7 @@
 
 #include "bvh/bvh.h"
 #include "cpu/reference_renderer.h"
+#include "gpu/optics_kernel.h"
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
 #include "image/image_diff.h"
@@ -24,6 +25,15 @@ inline std::string sharedPath(const std::string& relative) { return std::string(
 inline VulkanDevice& testDevice() {
     static VulkanDevice device("");
     return device;
+}
+
+// Runs optics_test.comp over `cases` on the test device; any validation message fails the test.
+inline std::vector<OpticsResult> evaluateOptics(const std::vector<OpticsCase>& cases) {
+    const std::uint32_t before = testDevice().validationMessages();
+    std::vector<OpticsResult> results = evaluateOpticsOnGpu(testDevice(), cases);
+    EXPECT_EQ(testDevice().validationMessages(), before) << "Vulkan validation messages in optics_test.comp";
+    EXPECT_EQ(results.size(), cases.size());
+    return results;
 }
 
 struct RenderPair {

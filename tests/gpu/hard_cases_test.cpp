@@ -20,6 +20,7 @@
 #include "cpu/ray_offset.h"
 #include "gpu/optics_kernel.h"
 #include "gpu_test_support.h"
+#include "../support/test_meshes.h"
 
 namespace vitrum::testing {
 namespace {
@@ -35,13 +36,6 @@ OpticsCase opticsCase(vec3 d, vec3 n, float n1, float n2) {
                       .attenuation = glm::vec4(0.0f)};
 }
 
-std::vector<OpticsResult> evaluate(const std::vector<OpticsCase>& cases) {
-    const std::uint32_t before = testDevice().validationMessages();
-    std::vector<OpticsResult> results = evaluateOpticsOnGpu(testDevice(), cases);
-    EXPECT_EQ(testDevice().validationMessages(), before) << "Vulkan validation messages in optics_test.comp";
-    EXPECT_EQ(results.size(), cases.size());
-    return results;
-}
 
 bool finite(const glm::vec4& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
@@ -91,7 +85,7 @@ TEST(HardCaseOptics, CriticalAngleGivesFullReflectionAndNoNaN) {
     sines.insert(sines.end(), {critical - 1e-6f, critical + 1e-6f, critical - 1e-3f, critical + 1e-3f});
     std::vector<OpticsCase> cases;
     for (float s : sines) cases.push_back(opticsCase(atSine(s), kUp, 1.5f, 1.0f));
-    const std::vector<OpticsResult> r = evaluate(cases);
+    const std::vector<OpticsResult> r = evaluateOptics(cases);
     int tir = 0, refracted = 0;
     for (std::size_t i = 0; i < cases.size(); ++i) {
         SCOPED_TRACE("sin(theta_1) = " + std::to_string(sines[i]));
@@ -146,7 +140,7 @@ TEST(HardCaseOptics, NormalIncidenceIsExactWithoutDividingBySinTheta) {
     std::vector<OpticsCase> cases;
     for (const vec3& normal : normals)
         for (auto [n1, n2] : pairs) cases.push_back(opticsCase(-normal, normal, n1, n2));
-    const std::vector<OpticsResult> r = evaluate(cases);
+    const std::vector<OpticsResult> r = evaluateOptics(cases);
     for (std::size_t i = 0; i < cases.size(); ++i) {
         ASSERT_TRUE(allFinite(r[i]));
         const vec3 di(cases[i].direction);
@@ -173,7 +167,7 @@ TEST(HardCaseOptics, GrazingIncidenceTendsToFullReflectionFromBothSides) {
         cases.push_back(opticsCase(d, kUp, 1.0f, 1.5f));
         cases.push_back(opticsCase(d, kUp, 1.5f, 1.0f));
     }
-    const std::vector<OpticsResult> r = evaluate(cases);
+    const std::vector<OpticsResult> r = evaluateOptics(cases);
     float previous = 0.0f;
     for (std::size_t i = 0; i < cases.size(); i += 2) {
         const float c = cosines[i / 2];
@@ -200,7 +194,7 @@ TEST(HardCaseOptics, EqualIndicesReflectNothingAndGoStraight) {
     std::vector<OpticsCase> cases;
     for (float ior : {0.8f, 1.0f, 1.33f, 1.5f, 5.0f})
         for (float s : {0.0f, 0.3f, 0.9f, 0.999f}) cases.push_back(opticsCase(atSine(s), kUp, ior, ior));
-    const std::vector<OpticsResult> r = evaluate(cases);
+    const std::vector<OpticsResult> r = evaluateOptics(cases);
     for (std::size_t i = 0; i < cases.size(); ++i) {
         ASSERT_TRUE(allFinite(r[i]));
         for (int m = 0; m < 3; ++m) EXPECT_EQ(r[i].reflectance[m], 0.0f);
@@ -226,7 +220,7 @@ TEST(HardCaseOptics, SchlickErrorAgainstExactIsMeasuredUpToIndexFive) {
             const float c = float(i) / kSteps;
             cases.push_back(opticsCase(vec3(std::sqrt(1.0f - c * c), -c, 0.0f), kUp, p.n1, p.n2));
         }
-        const std::vector<OpticsResult> r = evaluate(cases);
+        const std::vector<OpticsResult> r = evaluateOptics(cases);
         for (int i = 0; i <= kSteps; ++i) {
             ASSERT_TRUE(allFinite(r[i]));
             const double c = -double(cases[i].direction.y);
@@ -249,7 +243,7 @@ TEST(HardCaseOptics, IndexBelowOneReflectsTotallyOnTheWayIn) {
     // n2 = 0.8 < n1 = 1: the medium is optically thinner than air, so TIR happens entering it,
     // beyond sin(theta_c) = 0.8, and Schlick takes theta_t (n1 > n2).
     const std::vector<OpticsResult> r =
-        evaluate({opticsCase(atSine(0.79f), kUp, 1.0f, 0.8f), opticsCase(atSine(0.81f), kUp, 1.0f, 0.8f)});
+        evaluateOptics({opticsCase(atSine(0.79f), kUp, 1.0f, 0.8f), opticsCase(atSine(0.81f), kUp, 1.0f, 0.8f)});
     ASSERT_TRUE(allFinite(r[0]) && allFinite(r[1]));
     EXPECT_GE(r[0].refracted.w, 0.0f);
     EXPECT_NEAR(r[0].reflectance.y, exactFresnel(1.0, 0.8, std::sqrt(1.0 - 0.79 * 0.79)), 1e-5);
@@ -286,7 +280,7 @@ TEST(HardCaseOptics, RandomCasesKeepSnellReciprocityAndUnitLength) {
         const float n2 = i % 10 == 0 ? n1 : 0.2f * std::pow(25.0f, uniform(i, 5));
         forward.push_back(opticsCase(d, n, n1, n2));
     }
-    const std::vector<OpticsResult> r1 = evaluate(forward);
+    const std::vector<OpticsResult> r1 = evaluateOptics(forward);
     std::vector<OpticsCase> back;
     std::vector<std::uint32_t> backIndex;
     for (std::uint32_t i = 0; i < kCases; ++i) {
@@ -295,7 +289,7 @@ TEST(HardCaseOptics, RandomCasesKeepSnellReciprocityAndUnitLength) {
             opticsCase(-vec3(r1[i].refracted), -vec3(forward[i].normal), forward[i].media.y, forward[i].media.x));
         backIndex.push_back(i);
     }
-    const std::vector<OpticsResult> r2 = evaluate(back);
+    const std::vector<OpticsResult> r2 = evaluateOptics(back);
     double maxSnell = 0, maxUnit = 0, maxBack = 0, maxReciprocity = 0;
     std::uint32_t tir = 0;
     for (std::uint32_t i = 0; i < kCases; ++i) {
@@ -385,32 +379,10 @@ void addBox(Scene& scene, vec3 lo, vec3 hi, std::uint32_t materialIndex, std::ui
 
 // Icosahedron subdivided twice (320 triangles), shared vertices bit-identical, outward wound.
 void addIcosphere(Scene& scene, vec3 centre, float radius, std::uint32_t materialIndex, std::uint32_t object) {
-    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    std::vector<glm::dvec3> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
-                                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
-    for (glm::dvec3& p : v) p = glm::normalize(p);
-    std::vector<glm::uvec3> f = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-    for (int level = 0; level < 2; ++level) {
-        std::map<std::pair<unsigned, unsigned>, unsigned> mid;
-        auto midpoint = [&](unsigned a, unsigned b) {
-            auto [it, inserted] = mid.try_emplace(std::minmax(a, b), unsigned(v.size()));
-            if (inserted) v.push_back(glm::normalize(v[a] + v[b]));
-            return it->second;
-        };
-        std::vector<glm::uvec3> next;
-        for (const glm::uvec3& tri : f) {
-            const unsigned ab = midpoint(tri.x, tri.y), bc = midpoint(tri.y, tri.z), ca = midpoint(tri.z, tri.x);
-            next.insert(next.end(), {{tri.x, ab, ca}, {tri.y, bc, ab}, {tri.z, ca, bc}, {ab, bc, ca}});
-        }
-        f = std::move(next);
-    }
-    std::vector<vec3> p;
-    for (const glm::dvec3& q : v) p.push_back(vec3(q) * radius + centre);
-    for (const glm::uvec3& tri : f) {
-        Triangle tr = triangle(p[tri.x], p[tri.y], p[tri.z], materialIndex, object);
-        for (int k = 0; k < 3; ++k) tr.normal[k] = glm::normalize(vec3(v[tri[k]]));  // smooth normals
+    const IndexedMesh mesh = icosphere(2, radius, centre);
+    for (const glm::uvec3& tri : mesh.faces) {
+        Triangle tr = triangle(mesh.vertices[tri.x], mesh.vertices[tri.y], mesh.vertices[tri.z], materialIndex, object);
+        for (int k = 0; k < 3; ++k) tr.normal[k] = glm::normalize(mesh.directions[tri[k]]);  // smooth normals
         scene.triangles.push_back(tr);
     }
 }

@@ -30,16 +30,8 @@ OpticsCase makeCase(vec3 d, vec3 n, float n1, float n2, vec3 mu = vec3(0.0f), fl
     };
 }
 
-// Runs the cases on the test device; any validation message fails the calling test.
-std::vector<OpticsResult> evaluate(const std::vector<OpticsCase>& cases) {
-    const std::uint32_t before = testDevice().validationMessages();
-    std::vector<OpticsResult> results = evaluateOpticsOnGpu(testDevice(), cases);
-    EXPECT_EQ(testDevice().validationMessages(), before) << "Vulkan validation messages in optics_test.comp";
-    EXPECT_EQ(results.size(), cases.size());
-    return results;
-}
 
-OpticsResult evaluateOne(const OpticsCase& c) { return evaluate({c}).at(0); }
+OpticsResult evaluateOne(const OpticsCase& c) { return evaluateOptics({c}).at(0); }
 
 vec3 xyz(const glm::vec4& v) { return vec3(v); }
 
@@ -76,7 +68,7 @@ TEST(GlslOptics, RefractionMatchesLectureExample) {
 
 TEST(GlslOptics, ReflectionMatchesLectureExample) {
     // r = d - 2 (d.n) n = (-0.429, 0.903, 0).
-    const std::vector<OpticsResult> r = evaluate({lectureCase(), makeCase(lectureDirection(), -kUp, 1.5f, 1.0f)});
+    const std::vector<OpticsResult> r = evaluateOptics({lectureCase(), makeCase(lectureDirection(), -kUp, 1.5f, 1.0f)});
     const vec3 reflected = xyz(r[0].reflected);
     EXPECT_NEAR(reflected.x, -0.429, 5e-4);
     EXPECT_NEAR(reflected.y, 0.903, 5e-4);
@@ -116,7 +108,7 @@ TEST(GlslOptics, TotalInternalReflectionGivesFullReflectance) {
     const auto at = [&](float sinTheta) {
         return makeCase(vec3(sinTheta, -std::sqrt(1.0f - sinTheta * sinTheta), 0.0f), kUp, 1.5f, 1.0f);
     };
-    const std::vector<OpticsResult> near = evaluate({at(sinCritical - 1e-3f), at(sinCritical + 1e-3f)});
+    const std::vector<OpticsResult> near = evaluateOptics({at(sinCritical - 1e-3f), at(sinCritical + 1e-3f)});
     EXPECT_GT(near[0].refracted.w, 0.0f);
     EXPECT_LT(near[0].reflectance.y, 1.0f);
     EXPECT_NEAR(glm::length(xyz(near[0].refracted)), 1.0, 1e-5);
@@ -143,7 +135,7 @@ TEST(GlslOptics, ReversedRefractionReturnsTheIncomingDirection) {
 
 TEST(GlslOptics, RefractionAtNormalIncidenceGoesStraight) {
     // The final formula never divides by sin(theta1), which is 0 here.
-    const std::vector<OpticsResult> r = evaluate(
+    const std::vector<OpticsResult> r = evaluateOptics(
         {makeCase(vec3(0, 0, -1), vec3(0, 0, 1), 1.0f, 1.5f), makeCase(vec3(0, 0, -1), vec3(0, 0, 1), 1.5f, 1.0f)});
     for (const OpticsResult& result : r) {
         EXPECT_NEAR(glm::length(xyz(result.refracted) - vec3(0, 0, -1)), 0.0, 1e-6);
@@ -154,7 +146,7 @@ TEST(GlslOptics, RefractionAtNormalIncidenceGoesStraight) {
 
 TEST(GlslOptics, SchlickMatchesExactAtNormalIncidence) {
     // F0 = ((1 - 1.5) / (1 + 1.5))^2 = 0.04, going in and coming out.
-    const std::vector<OpticsResult> r = evaluate(
+    const std::vector<OpticsResult> r = evaluateOptics(
         {makeCase(vec3(0, 0, -1), vec3(0, 0, 1), 1.0f, 1.5f), makeCase(vec3(0, 0, -1), vec3(0, 0, 1), 1.5f, 1.0f)});
     for (const OpticsResult& result : r) {
         EXPECT_NEAR(result.reflected.w, 0.04, 1e-7);    // schlickF0
@@ -206,7 +198,7 @@ TEST(GlslOptics, IndexMatchedInterfaceReflectsNothing) {
 
 TEST(GlslOptics, BeerLambertIsExponential) {
     // Lecture, "Attenuation of Refracted Ray": exp(-mu t) per channel; mu = 0 (air) or t = 0 gives 1.
-    const std::vector<OpticsResult> r = evaluate({makeCase(lectureDirection(), kUp, 1.5f, 1.0f, vec3(0, 1, 0.5f), 2),
+    const std::vector<OpticsResult> r = evaluateOptics({makeCase(lectureDirection(), kUp, 1.5f, 1.0f, vec3(0, 1, 0.5f), 2),
                                                   makeCase(lectureDirection(), kUp, 1.5f, 1.0f, vec3(3, 1, 7), 0)});
     EXPECT_EQ(r[0].beer.x, 1.0f);
     EXPECT_NEAR(r[0].beer.y, std::exp(-2.0), 1e-7);
@@ -262,7 +254,7 @@ TEST(GlslOptics, RandomCasesMatchCpuReferenceAndPhysics) {
     constexpr std::uint32_t kCases = 64u * 64u + 3u;
     std::vector<OpticsCase> cases;
     for (std::uint32_t i = 0; i < kCases; ++i) cases.push_back(randomCase(i));
-    const std::vector<OpticsResult> results = evaluate(cases);
+    const std::vector<OpticsResult> results = evaluateOptics(cases);
     ASSERT_EQ(results.size(), cases.size());
 
     constexpr double kTolerance = 1e-5;
