@@ -41,7 +41,7 @@ vec3 cubeUv(vec3 d) {
 }
 
 vec3 backgroundRadiance(vec3 d) {
-    uint kind = params.environment.x;
+    uint kind = backgroundKind();
     if (kind == kBackgroundSpherical) return sampleTexture(params.environment.z, sphericalUv(d), true, false);
     if (kind == kBackgroundCube) {
         vec3 c = cubeUv(d);

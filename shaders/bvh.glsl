@@ -87,14 +87,14 @@ bool traversalStep(uint mode) {
         TriangleVertices tri = vertices[triangle];
         vec3 hit = intersectTriangle(tri, origin, direction);
         if (hit.x > st.traceOrigin.w && hit.x < st.traceDirection.w) {
-            if (mode == kTraverseTouching) {
+            if (kTouchingProbe && mode == kTraverseTouching) {
                 onTouchingHit(tri, hit.x);
                 return false;
             }
             st.traceDirection.w = hit.x;
             st.traversal.z = triangle;
             st.hitUv.zw = hit.yz;
-            if (mode == kTraverseAny) return true;
+            if (kShadowRays && mode == kTraverseAny) return true;
         }
         return false;
     }

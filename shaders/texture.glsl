@@ -21,7 +21,7 @@ vec3 sampleTexture(uint index, vec2 uv, bool wrapU, bool wrapV) {
     if (any(isnan(uv)) || any(isinf(uv))) return vec3(0.0);
     float x = uv.x * float(info.y);
     float y = uv.y * float(info.z);
-    if (params.environment.y == kFilterNearest) return texelAt(info, int(floor(x)), int(floor(y)), wrapU, wrapV);
+    if (textureFilter() == kFilterNearest) return texelAt(info, int(floor(x)), int(floor(y)), wrapU, wrapV);
     float xc = x - 0.5;
     float yc = y - 0.5;
     float x0 = floor(xc);

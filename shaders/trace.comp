@@ -10,6 +10,7 @@
 
 #include "shared/gpu_types.h"
 #include "bindings.glsl"
+#include "specialization.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -22,6 +23,10 @@ uint gNodeVisits = 0u;
 uint gTraversalOverflows = 0u;
 
 uint gTouchingInterfaces = 0u;
+uint gTouchingProbes = 0u;
+
+// This pixel's pending rays: pendingRays[pendingBase .. pendingBase + kPendingRayCapacity).
+uint pendingBase = 0u;
 
 // A surface the touching probe found: a glass surface of another object than the one hit, at
 // (nearly) the same point. Recorded once per object, at most 3.
@@ -65,11 +70,13 @@ uint materialModel(GpuMaterial m) { return floatBitsToUint(m.ambient.w); }
 
 // IOR of the medium a ray is in: the innermost object's, or the scene's air.
 float mediumIor(PendingRay r) {
+    if (!usesMaterial(kMaterialGlass)) return params.background.w;
     uint count = mediaCount(r);
     return count == 0u ? params.background.w : materials[objectMaterial[r.media[count - 1u]]].attenuation.w;
 }
 
 vec3 mediumAttenuation(PendingRay r) {
+    if (!kAbsorption) return vec3(0.0);
     uint count = mediaCount(r);
     return count == 0u ? vec3(0.0) : materials[objectMaterial[r.media[count - 1u]]].attenuation.xyz;
 }
@@ -158,13 +165,14 @@ void finishTrace() {
     st.hitUv.xy = uv;
 
     uint model = materialModel(materials[hitMaterial()]);
-    if (model == kMaterialGlass) {
+    if (usesMaterial(kMaterialGlass) && model == kMaterialGlass) {
         st.touching = uvec4(0u);
         st.probe.x = t;
-        if (params.tuning.z != 0.0) {
+        if (kTouchingProbe && params.tuning.z != 0.0) {
             // Touching objects (lecture, "Problematic Cases"): look for other glass surfaces
             // within the touching distance of this hit along the ray.
             float tolerance = params.tuning.y;
+            gTouchingProbes += 1u;
             beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, max(0.0, t - tolerance), t + tolerance);
             st.control.x = kPhaseTouching;
         } else {
@@ -176,18 +184,18 @@ void finishTrace() {
     vec3 d = st.ray.direction.xyz;
     if (dot(geometricNormal, d) > 0.0) st.hitGeometricNormal.xyz = -geometricNormal;
     if (dot(shadingNormal, d) > 0.0) st.hitNormal.xyz = -shadingNormal;
-    if (model == kMaterialNormal) {
+    if (usesMaterial(kMaterialNormal) && model == kMaterialNormal) {
         st.sampleColour.xyz += st.ray.weight.xyz * (0.5 * st.hitNormal.xyz + 0.5);
         st.control.x = kPhaseNextRay;
         return;
     }
     st.control.z = 0u;
-    st.control.x = model == kMaterialMirror ? kPhaseScatter : kPhaseNextLight;
+    st.control.x = usesMaterial(kMaterialMirror) && model == kMaterialMirror ? kPhaseScatter : kPhaseNextLight;
 }
 
 vec3 diffuseColour(GpuMaterial m) {
     uint texture = floatBitsToUint(m.diffuse.w);
-    return texture == kNoTexture ? m.diffuse.xyz
+    return !kTextures || texture == kNoTexture ? m.diffuse.xyz
                                  : sampleTexture(texture, vec2(st.hitUv.x, 1.0 - st.hitUv.y), true, true);
 }
 
@@ -204,7 +212,7 @@ vec3 directLight(uint index) {
     vec3 colour = light.colour.xyz;
     if (light.position.w != 0.0) colour /= distanceSquared;
     vec3 result = diffuseColour(m) * max(0.0, dot(n, l));
-    if (materialModel(m) == kMaterialPhong) {
+    if (usesMaterial(kMaterialPhong) && materialModel(m) == kMaterialPhong) {
         vec3 lr = 2.0 * dot(n, l) * n - l;
         float c = max(0.0, dot(lr, -st.ray.direction.xyz));
         float ns = m.specular.w;
@@ -218,9 +226,9 @@ vec3 directLight(uint index) {
 // is not zero.
 void nextLight() {
     uint index = st.control.z;
-    if (index >= params.counts.x) {
+    if (!kShadowRays || index >= params.counts.x) {
         uint model = materialModel(materials[hitMaterial()]);
-        st.control.x = model == kMaterialPhong ? kPhaseScatter : kPhaseNextRay;
+        st.control.x = usesMaterial(kMaterialPhong) && model == kMaterialPhong ? kPhaseScatter : kPhaseNextRay;
         return;
     }
     GpuMaterial m = materials[hitMaterial()];
@@ -254,7 +262,7 @@ void pushRay(vec3 origin, vec3 direction, vec3 weight, uvec4 media, uint count, 
         gWeightCuts += 1u;
         return;
     }
-    if (st.control.y >= kRayStackSize) {
+    if (st.control.y >= kPendingRayCapacity) {
         gRayStackOverflows += 1u;
         return;
     }
@@ -263,7 +271,7 @@ void pushRay(vec3 origin, vec3 direction, vec3 weight, uvec4 media, uint count, 
     r.direction = vec4(direction, uintBitsToFloat(count));
     r.weight = vec4(weight, 0.0);
     r.media = media;
-    st.pending[st.control.y] = r;
+    pendingRays[pendingBase + st.control.y] = r;
     st.control.y += 1u;
     if (sameDepth) return;
     if (reflection) gReflectionRays += 1u;
@@ -276,7 +284,7 @@ void scatterOpaque(GpuMaterial m) {
     vec3 n = st.hitNormal.xyz;
     vec3 origin = offsetRayOrigin(st.hitPosition.xyz, st.hitGeometricNormal.xyz);
     vec3 weight;
-    if (materialModel(m) == kMaterialMirror) {
+    if (usesMaterial(kMaterialMirror) && materialModel(m) == kMaterialMirror) {
         weight = st.ray.weight.xyz * m.specular.xyz;
     } else {
         float n1 = mediumIor(st.ray);
@@ -295,21 +303,21 @@ void scatterOpaque(GpuMaterial m) {
 void leaveMedium(inout uvec4 media, inout uint count, uint object) {
     uint found = count;
     if (count > 0u && media[0] == object) found = 0u;
-    if (count > 1u && media[1] == object) found = 1u;
-    if (count > 2u && media[2] == object) found = 2u;
-    if (count > 3u && media[3] == object) found = 3u;
+    if (kMediumStackDepth > 1u && count > 1u && media[1] == object) found = 1u;
+    if (kMediumStackDepth > 2u && count > 2u && media[2] == object) found = 2u;
+    if (kMediumStackDepth > 3u && count > 3u && media[3] == object) found = 3u;
     if (found == count) {
         gInconsistentMedia += 1u;
         return;
     }
-    if (found <= 0u && 1u < count) media[0] = media[1];
-    if (found <= 1u && 2u < count) media[1] = media[2];
-    if (found <= 2u && 3u < count) media[2] = media[3];
+    if (kMediumStackDepth > 1u && found <= 0u && 1u < count) media[0] = media[1];
+    if (kMediumStackDepth > 2u && found <= 1u && 2u < count) media[1] = media[2];
+    if (kMediumStackDepth > 3u && found <= 2u && 3u < count) media[2] = media[3];
     count -= 1u;
 }
 
 void enterMedium(inout uvec4 media, inout uint count, uint object) {
-    if (count >= kMaxMediumDepth) {
+    if (count >= kMediumStackDepth) {
         gMediumStackOverflows += 1u;
         return;
     }
@@ -331,7 +339,7 @@ void scatterGlass(GpuMaterial m) {
     bool entering = dot(d, ng) < 0.0;
     uvec4 media = st.ray.media;
     uint count = mediaCount(st.ray);
-    uint touchingCount = st.touching.w;
+    uint touchingCount = kTouchingProbe ? st.touching.w : 0u;
     if (touchingCount > 0u) gTouchingInterfaces += 1u;
     // Leaving first ...
     if (!entering) leaveMedium(media, count, hitObject());
@@ -361,7 +369,7 @@ void scatterGlass(GpuMaterial m) {
     float eta = n1 / n2;
     float cosI = -dot(d, n);
     float cos2t = cosSquaredTransmitted(d, n, eta);
-    float r = fresnelReflectance(params.counts.y, n1, n2, cosI, cos2t);
+    float r = fresnelReflectance(fresnelModel(), n1, n2, cosI, cos2t);
     if (cos2t < 0.0) gTotalInternalReflections += 1u;
     vec3 w = st.ray.weight.xyz;
     if (cos2t >= 0.0)
@@ -370,22 +378,27 @@ void scatterGlass(GpuMaterial m) {
     pushRay(offsetRayOrigin(p, facing), reflectDirection(d, n), w * r, st.ray.media, mediaCount(st.ray), false, true);
 }
 
+// Whether any material of this build spawns reflected or refracted rays.
+bool spawnsRays() {
+    return usesMaterial(kMaterialPhong) || usesMaterial(kMaterialMirror) || usesMaterial(kMaterialGlass);
+}
+
 void scatter() {
     GpuMaterial m = materials[hitMaterial()];
-    if (materialModel(m) == kMaterialGlass) scatterGlass(m);
+    if (usesMaterial(kMaterialGlass) && materialModel(m) == kMaterialGlass) scatterGlass(m);
     else scatterOpaque(m);
     st.control.x = kPhaseNextRay;
 }
 
 void nextRay() {
-    if (st.control.y == 0u) {
+    if (kPendingRayCapacity == 0u || st.control.y == 0u) {
         uint done = floatBitsToUint(st.accumulated.w) + 1u;
         st.accumulated = vec4(st.accumulated.xyz + st.sampleColour.xyz, uintBitsToFloat(done));
         st.control.x = kPhaseStartSample;
         return;
     }
     st.control.y -= 1u;
-    st.ray = st.pending[st.control.y];
+    st.ray = pendingRays[pendingBase + st.control.y];
     gMaxRayDepth = max(gMaxRayDepth, rayDepth(st.ray));
     beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 0.0, 3.0e38);
     st.control.x = kPhaseTrace;
@@ -396,7 +409,7 @@ void shadingStep() {
     uint phase = st.control.x;
     if (phase == kPhaseNextLight) {
         nextLight();
-    } else if (phase == kPhaseScatter) {
+    } else if (spawnsRays() && phase == kPhaseScatter) {
         scatter();
     } else if (phase == kPhaseNextRay) {
         nextRay();
@@ -416,6 +429,7 @@ void main() {
     if (local.x >= params.tile.z || local.y >= params.tile.w || pixel.x >= params.image.x || pixel.y >= params.image.y)
         return;
     uint slot = local.y * params.tile.z + local.x;
+    pendingBase = slot * kPendingRayCapacity;
     if (params.pass.x == 1u) {
         st.accumulated = vec4(0.0, 0.0, 0.0, uintBitsToFloat(0u));
         st.control = uvec4(kPhaseStartSample, 0u, 0u, 0u);
@@ -435,7 +449,9 @@ void main() {
         steps += 1u;
         uint phase = st.control.x;
         if (phase == kPhaseTrace || phase == kPhaseShadow || phase == kPhaseTouching) {
-            uint mode = phase == kPhaseShadow ? kTraverseAny : (phase == kPhaseTouching ? kTraverseTouching : kTraverseClosest);
+            uint mode = kShadowRays && phase == kPhaseShadow
+                            ? kTraverseAny
+                            : (kTouchingProbe && phase == kPhaseTouching ? kTraverseTouching : kTraverseClosest);
             bool over = false;
             while (!over && steps < budget) {
                 steps += 1u;
@@ -477,6 +493,7 @@ void main() {
     addStat(kStatTotalInternalReflections, gTotalInternalReflections);
     addStat(kStatAbsorbedEscapes, gAbsorbedEscapes);
     addStat(kStatTouchingInterfaces, gTouchingInterfaces);
+    addStat(kStatTouchingProbes, gTouchingProbes);
     addStat(kStatInconsistentMedia, gInconsistentMedia);
     if (gMaxRayDepth != 0u) atomicMax(stats[kStatMaxRayDepth], gMaxRayDepth);
     if (gMaxMediumDepth != 0u) atomicMax(stats[kStatMaxMediumDepth], gMaxMediumDepth);

@@ -12,6 +12,7 @@
 #include "gpu/vulkan_device.h"
 #include "image/image_diff.h"
 #include "render/scene_features.h"
+#include "render/trace_specialization.h"
 #include "shared/gpu_types.h"
 #include "scene/scene_loader.h"
 
@@ -73,8 +74,11 @@ int infoCommand(int argc, char** argv, int first) {
     SceneFeatures features = analyseScene(scene);
     std::printf("features:\n");
     for (const std::string& line : features.describe()) std::printf("  %s\n", line.c_str());
-    std::printf("stacks: medium stack holds %u media, pending-ray stack %u rays (exact to depth %u)\n",
-                gpu::kMaxMediumDepth, gpu::kRayStackSize, gpu::kRayStackSize - 1);
+    // The kernel `vitrum render` builds for it (render/trace_specialization.h).
+    std::printf("gpu kernel (--no-specialize: the general one, medium stack %u, pending-ray stack %u):\n",
+                gpu::kMaxMediumDepth, gpu::kRayStackSize);
+    for (const std::string& line : TraceSpecialization::forScene(scene, features).describe())
+        std::printf("  %s\n", line.c_str());
     std::printf("lights: %zu\n", scene.lights.size());
     for (const PointLight& l : scene.lights)
         std::printf("  at (%g, %g, %g), colour (%g, %g, %g)%s\n", l.position.x, l.position.y, l.position.z, l.colour.x,

@@ -51,6 +51,8 @@ Renders SCENE (a .json scene file or a bare .obj) and writes OUT: .png (8-bit sR
   --iteration-budget N     GPU loop steps per pixel and dispatch (default 16384; lavapipe
                            silently stops loops at 65,535)
   --tile N                 GPU tile size in pixels (default 128)
+  --no-specialize          GPU: the general kernel instead of one built for what the scene
+                           needs (same image; for comparison, docs/specialization.md)
 )";
 
 enum class Backend { Vulkan, Cpu };
@@ -132,6 +134,7 @@ RenderCommand parse(int argc, char** argv, int first) {
         } else if (flag == "--stats") c.statsPath = args.valueOf(flag);
         else if (flag == "--iteration-budget") c.gpu.iterationBudget = Arguments::toUint(flag, args.valueOf(flag), 16, 1u << 24);
         else if (flag == "--tile") c.gpu.tileSize = Arguments::toUint(flag, args.valueOf(flag), 8, 4096);
+        else if (flag == "--no-specialize") c.gpu.specialize = false;
         else if (flag.rfind("-", 0) == 0) throw InputError("unknown option " + flag + " (see vitrum render --help)");
         else if (c.scenePath.empty()) c.scenePath = flag;
         else throw InputError("more than one scene given: \"" + c.scenePath + "\" and \"" + flag + "\"");
@@ -202,6 +205,7 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         {"texture texels", texels * 3 * sizeof(float)},
         {"image", VkDeviceSize(scene.camera.width) * scene.camera.height * sizeof(glm::vec4)},
         {"trace state of one tile", tilePixels * sizeof(gpu::TraceState)},
+        {"pending rays of one tile", tilePixels * gpu::kRayStackSize * sizeof(gpu::PendingRay)},
     };
     const VkDeviceSize limit = storageBufferLimit(device).bytes;
     VkDeviceSize total = 0;

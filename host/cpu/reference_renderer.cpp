@@ -26,6 +26,7 @@
 #include "cpu/optics.h"
 #include "cpu/ray_offset.h"
 #include "render/sampling.h"
+#include "render/scene_features.h"
 
 namespace vitrum {
 namespace {
@@ -38,6 +39,7 @@ struct TraceCounters {
     std::uint64_t totalInternalReflections = 0;
     std::uint64_t absorbedEscapes = 0;
     std::uint64_t inconsistentMedia = 0;
+    std::uint64_t touchingProbes = 0;
     TraversalCounters traversal;
 
     void addTo(RenderStats& stats) const {
@@ -51,6 +53,7 @@ struct TraceCounters {
         stats.totalInternalReflections += totalInternalReflections;
         stats.absorbedEscapes += absorbedEscapes;
         stats.nodeVisits += traversal.nodeVisits;
+        stats.touchingProbes += touchingProbes;
     }
 };
 
@@ -70,11 +73,7 @@ std::vector<std::uint32_t> objectMediumMaterials(const Scene& scene) {
     return result;
 }
 
-// Surfaces of two objects closer than this fraction of the scene's diagonal along a ray are one
-// interface. Far above float rounding of coordinates (~1e-7), far below modelled gaps.
-constexpr double kTouchingTolerance = 1e-5;
-
-double sceneDiagonal(const Bvh& bvh) {
+double boundsDiagonal(const Bvh& bvh) {
     if (bvh.nodes.empty()) return 0.0;
     return glm::length(glm::dvec3(bvh.nodes[0].boundsMax) - glm::dvec3(bvh.nodes[0].boundsMin));
 }
@@ -92,7 +91,8 @@ public:
           vertices_(packTriangleVertices(bvh, scene.triangles)),
           mediumMaterials_(objectMediumMaterials(scene)),
           maxDepth_(scene.settings.maxDepth),
-          touchTolerance_(sceneDiagonal(bvh) * Real(kTouchingTolerance)),
+          touchTolerance_(boundsDiagonal(bvh) * Real(kTouchingTolerance)),
+          touchingPossible_(analyseScene(scene).touchingMediaPossible),
           minWeight_(Real(scene.settings.minWeight)),
           offsetScale_(rayOffsetScale(scene.triangles)) {
         const Camera& c = scene.camera;
@@ -305,7 +305,7 @@ private:
         const bool entering = glm::dot(d, hit.geometricNormal) < Real(0);
         std::vector<Crossing> crossings{{hit.object, entering}};
         Real farT = hit.t;
-        findTouchingCrossings(hit, rayOrigin, d, crossings, farT, counters);
+        if (touchingPossible_) findTouchingCrossings(hit, rayOrigin, d, crossings, farT, counters);
 
         // The stack on the far side: leave, then enter (for touching objects the ray leaves one
         // and enters the other at the same point, whatever order the hits came in).
@@ -365,6 +365,7 @@ private:
                                Real& farT, TraceCounters& counters) const {
         thread_local std::vector<TriangleHit<Real>> hits;
         hits.clear();
+        counters.touchingProbes += 1;
         const Ray<Real> probe{rayOrigin, d, std::max(Real(0), hit.t - touchTolerance_), hit.t + touchTolerance_};
         traceAll<Real>(bvh_.nodes, vertices_, probe, hits, &counters.traversal);
         for (const TriangleHit<Real>& h : hits) {
@@ -397,7 +398,8 @@ private:
     std::vector<gpu::TriangleVertices> vertices_;
     std::vector<std::uint32_t> mediumMaterials_;
     std::uint32_t maxDepth_;
-    Real touchTolerance_;  // surfaces closer than this along a ray touch
+    Real touchTolerance_;    // surfaces closer than this along a ray touch
+    bool touchingPossible_;  // glass objects whose boxes overlap: only then can surfaces touch
     Real minWeight_;
     RayOffsetScale offsetScale_;  // Waechter and Binder's absolute offsets, scaled to the scene
     Vec3 cameraFrom_, cameraX_, cameraY_, cameraZ_;
@@ -445,6 +447,7 @@ Image renderReference(const Scene& scene, const Bvh& bvh, const ReferenceOptions
     threads = std::max(1u, std::min(threads, std::max(1u, scene.camera.height)));
     Image image(scene.camera.width, scene.camera.height);
     stats.backend = "cpu";
+    stats.features = analyseScene(scene);
     stats.device = std::string("CPU reference (") + (options.doublePrecision ? "double" : "float") + "), " +
                    std::to_string(threads) + (threads == 1 ? " thread" : " threads");
     if (options.doublePrecision) renderRows<double>(scene, bvh, threads, options, image, stats);

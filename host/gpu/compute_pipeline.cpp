@@ -8,7 +8,8 @@
 namespace vitrum {
 
 ComputePipeline::ComputePipeline(const VulkanDevice& device, std::span<const std::uint32_t> spirv,
-                                 std::span<const VkDescriptorType> bindingTypes)
+                                 std::span<const VkDescriptorType> bindingTypes,
+                                 const VkSpecializationInfo* specialization)
     : device_(device.device()), bindings_(bindingTypes.begin(), bindingTypes.end()) {
     std::vector<VkDescriptorSetLayoutBinding> bindings;
     for (std::uint32_t b = 0; b < bindings_.size(); ++b)
@@ -53,6 +54,7 @@ ComputePipeline::ComputePipeline(const VulkanDevice& device, std::span<const std
                 .stage = VK_SHADER_STAGE_COMPUTE_BIT,
                 .module = module,
                 .pName = "main",
+                .pSpecializationInfo = specialization,
             },
         .layout = pipelineLayout,
     };

@@ -14,9 +14,10 @@ namespace vitrum {
 
 class ComputePipeline {
 public:
-    // `bindings[i]` is the descriptor type of binding i.
+    // `bindings[i]` is the descriptor type of binding i; `specialization` (may be null) sets the
+    // kernel's specialization constants.
     ComputePipeline(const VulkanDevice& device, std::span<const std::uint32_t> spirv,
-                    std::span<const VkDescriptorType> bindings);
+                    std::span<const VkDescriptorType> bindings, const VkSpecializationInfo* specialization = nullptr);
 
     // Points binding i of the descriptor set at buffers[i].
     void bind(std::span<const GpuBuffer* const> buffers);

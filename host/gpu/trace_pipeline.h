@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "gpu/compute_pipeline.h"
+#include "render/trace_specialization.h"
 
 namespace vitrum {
 
@@ -21,11 +22,12 @@ enum TraceBinding : std::uint32_t {
     kBindingPixels,
     kBindingStates,
     kBindingStats,
+    kBindingPendingRays,
     kTraceBindingCount,
 };
 
 constexpr std::uint32_t kTraceGroupSize = 8;  // local_size_x = local_size_y in trace.comp
 
-ComputePipeline makeTracePipeline(const VulkanDevice& device);
+ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization);
 
 }  // namespace vitrum

@@ -44,6 +44,7 @@ void addCounters(RenderStats& stats, const std::uint32_t* counters) {
     stats.maxRayDepth = std::max<std::uint64_t>(stats.maxRayDepth, counters[gpu::kStatMaxRayDepth]);
     stats.maxMediumDepth = std::max<std::uint64_t>(stats.maxMediumDepth, counters[gpu::kStatMaxMediumDepth]);
     stats.maxPixelLoopSteps = std::max<std::uint64_t>(stats.maxPixelLoopSteps, counters[gpu::kStatMaxPixelSteps]);
+    stats.touchingProbes += counters[gpu::kStatTouchingProbes];
 }
 
 }  // namespace
@@ -52,6 +53,10 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
                    RenderStats& stats) {
     stats.backend = "vulkan";
     stats.device = device.name();
+    stats.features = analyseScene(scene);
+    const TraceSpecialization kernel =
+        options.specialize ? TraceSpecialization::forScene(scene, stats.features) : TraceSpecialization::general();
+    stats.kernel = kernel;
 
     auto start = Clock::now();
     PackedScene packed = packScene(scene, bvh);
@@ -72,17 +77,21 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     GpuBuffer objectMaterials = makeStorageBuffer(device, spanOf(packed.objectMaterials), "object media");
     GpuBuffer pixels(device, std::max<VkDeviceSize>(VkDeviceSize(width) * height * sizeof(glm::vec4), 16),
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "image");
-    GpuBuffer states(device, VkDeviceSize(tileWidth) * tileHeight * sizeof(gpu::TraceState),
-                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "trace state of one tile");
+    const VkDeviceSize tilePixels = VkDeviceSize(tileWidth) * tileHeight;
+    GpuBuffer states(device, tilePixels * sizeof(gpu::TraceState), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                     "trace state of one tile");
+    GpuBuffer pendingRays(device, std::max<VkDeviceSize>(tilePixels * kernel.pendingRayCapacity * sizeof(gpu::PendingRay), 16),
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "pending rays of one tile");
+    stats.stateBytesPerPixel = sizeof(gpu::TraceState) + kernel.pendingRayCapacity * sizeof(gpu::PendingRay);
     GpuBuffer counters(device, gpu::kStatCount * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                        "statistics");
     stats.addPhase("upload", secondsSince(start));
 
     start = Clock::now();
-    ComputePipeline pipeline = makeTracePipeline(device);
-    std::array<const GpuBuffer*, kTraceBindingCount> bound{&params,    &nodes,           &vertices, &shading,
-                                                           &materials, &lights,          &textures, &texels,
-                                                           &objectMaterials, &pixels, &states, &counters};
+    ComputePipeline pipeline = makeTracePipeline(device, kernel);
+    std::array<const GpuBuffer*, kTraceBindingCount> bound{
+        &params, &nodes, &vertices, &shading, &materials, &lights, &textures,
+        &texels, &objectMaterials, &pixels, &states, &counters, &pendingRays};
     pipeline.bind(bound);
     stats.addPhase("pipeline", secondsSince(start));
 
@@ -92,15 +101,26 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     // tolerance as the CPU reference); with fewer than two glass objects nothing can touch.
     if (!bvh.nodes.empty())
         p.tuning.y = float(1e-5 * glm::length(glm::dvec3(bvh.nodes[0].boundsMax) - glm::dvec3(bvh.nodes[0].boundsMin)));
-    p.tuning.z = analyseScene(scene).touchingMediaPossible ? 1.0f : 0.0f;
+    // Whether to run the touching probe at glass hits. The general kernel asks only whether the
+    // scene has two glass objects; the specialized one has the analysis's answer compiled in
+    // (boxes that overlap), so it skips probes that could find nothing.
+    p.tuning.z = stats.features.glassObjects >= 2 ? 1.0f : 0.0f;
     const std::uint32_t tilesX = (width + tileWidth - 1) / tileWidth;
     const std::uint32_t tilesY = (height + tileHeight - 1) / tileHeight;
     const std::uint32_t groupsX = (tileWidth + kTraceGroupSize - 1) / kTraceGroupSize;
     const std::uint32_t groupsY = (tileHeight + kTraceGroupSize - 1) / kTraceGroupSize;
     auto* counterValues = counters.as<std::uint32_t>();
 
+    // lavapipe compiles the kernel at its first dispatch: one that traces nothing (an empty tile)
+    // measures the compile time alone.
     start = Clock::now();
-    bool firstDispatch = true;
+    p.tile = glm::uvec4(0u);
+    p.pass.x = 1;
+    std::memcpy(params.mapped(), &p, sizeof(p));
+    device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, 1, 1); });
+    stats.addPhase("compile", secondsSince(start));
+
+    start = Clock::now();
     for (std::uint32_t ty = 0; ty < tilesY; ++ty) {
         for (std::uint32_t tx = 0; tx < tilesX; ++tx) {
             p.tile = glm::uvec4(tx * tileWidth, ty * tileHeight, tileWidth, tileHeight);
@@ -108,13 +128,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
             for (;;) {
                 std::memcpy(params.mapped(), &p, sizeof(p));
                 std::memset(counterValues, 0, gpu::kStatCount * sizeof(std::uint32_t));
-                auto dispatchStart = Clock::now();
                 device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, groupsX, groupsY); });
-                if (firstDispatch) {
-                    // lavapipe compiles the kernel on its first dispatch.
-                    stats.addPhase("first dispatch", secondsSince(dispatchStart));
-                    firstDispatch = false;
-                }
                 ++stats.dispatches;
                 addCounters(stats, counterValues);
                 if (counterValues[gpu::kStatUnfinishedPixels] == 0) break;

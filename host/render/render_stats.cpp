@@ -13,7 +13,7 @@ double RenderStats::seconds(const std::string& phase) const {
 nlohmann::json toJson(const RenderStats& stats) {
     nlohmann::json phases = nlohmann::json::object();
     for (const auto& [name, s] : stats.phaseSeconds) phases[name] = s;
-    return {
+    nlohmann::json result = {
         {"backend", stats.backend},
         {"device", stats.device},
         {"seconds", phases},
@@ -32,6 +32,7 @@ nlohmann::json toJson(const RenderStats& stats) {
           {"weight_cuts", stats.limits.weightCuts},
           {"inconsistent_media", stats.limits.inconsistentMedia}}},
         {"touching_interfaces", stats.touchingInterfaces},
+        {"touching_probes", stats.touchingProbes},
         {"max_ray_depth", stats.maxRayDepth},
         {"max_medium_depth", stats.maxMediumDepth},
         {"total_internal_reflections", stats.totalInternalReflections},
@@ -40,7 +41,13 @@ nlohmann::json toJson(const RenderStats& stats) {
         {"max_pixel_loop_steps", stats.maxPixelLoopSteps},
         {"dispatches", stats.dispatches},
         {"node_visits", stats.nodeVisits},
+        {"features", toJson(stats.features)},
     };
+    if (stats.kernel) {
+        result["kernel"] = toJson(*stats.kernel);
+        result["kernel"]["state_bytes_per_pixel"] = stats.stateBytesPerPixel;
+    }
+    return result;
 }
 
 }  // namespace vitrum

@@ -2,11 +2,15 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
+
+#include "render/scene_features.h"
+#include "render/trace_specialization.h"
 
 namespace vitrum {
 
@@ -40,10 +44,14 @@ struct RenderStats {
     std::uint64_t totalInternalReflections = 0;
     std::uint64_t absorbedEscapes = 0;
     std::uint64_t touchingInterfaces = 0;  // glass hits merged with touching surfaces of other objects
+    std::uint64_t touchingProbes = 0;      // traversals around glass hits that looked for touching surfaces
     std::uint64_t maxRayDepth = 0;         // deepest ray traced (primary = 0)
     std::uint64_t maxMediumDepth = 0;      // most media one ray was inside
     std::uint64_t loopSteps = 0;          // GPU: steps of trace.comp's loop, all pixels
-    std::uint64_t maxPixelLoopSteps = 0;  // GPU: most steps one pixel needed, over all its dispatches  // rays that left the scene inside an absorbing medium
+    std::uint64_t maxPixelLoopSteps = 0;  // GPU: most steps one pixel needed, over all its dispatches
+    SceneFeatures features;                    // what the scene can need (both backends use it)
+    std::optional<TraceSpecialization> kernel;  // GPU: what the kernel was built for
+    std::uint64_t stateBytesPerPixel = 0;      // GPU: trace state and pending rays of one pixel
 
     void addPhase(const std::string& name, double seconds) { phaseSeconds.emplace_back(name, seconds); }
     double seconds(const std::string& phase) const;

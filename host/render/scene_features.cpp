@@ -1,16 +1,106 @@
 #include "render/scene_features.h"
 
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <map>
 #include <set>
+#include <unordered_map>
+
+#include <nlohmann/json.hpp>
+
+#include "shared/gpu_types.h"
 
 namespace vitrum {
+namespace {
+
+struct Box {
+    glm::dvec3 min{std::numeric_limits<double>::max()};
+    glm::dvec3 max{std::numeric_limits<double>::lowest()};
+
+    void grow(const glm::vec3& p) {
+        min = glm::min(min, glm::dvec3(p));
+        max = glm::max(max, glm::dvec3(p));
+    }
+    bool overlaps(const Box& o, double margin) const {
+        return glm::all(glm::lessThanEqual(min - margin, o.max)) && glm::all(glm::lessThanEqual(o.min - margin, max));
+    }
+};
+
+// Boxes of the objects that have glass triangles (all of each such object's triangles).
+std::vector<Box> glassObjectBoxes(const Scene& scene) {
+    std::set<std::uint32_t> glass;
+    for (const Triangle& t : scene.triangles)
+        if (scene.materials[t.material].model == MaterialModel::Glass) glass.insert(t.object);
+    std::map<std::uint32_t, Box> boxes;
+    for (const Triangle& t : scene.triangles)
+        if (glass.count(t.object))
+            for (const glm::vec3& p : t.position) boxes[t.object].grow(p);
+    std::vector<Box> result;
+    for (const auto& [object, box] : boxes) result.push_back(box);
+    return result;
+}
+
+// A directed edge between two vertex positions, compared bit for bit (an OBJ's shared vertices
+// have identical positions in every triangle that uses them).
+struct Edge {
+    std::uint32_t bits[6];
+    bool operator==(const Edge& o) const { return std::memcmp(bits, o.bits, sizeof(bits)) == 0; }
+};
+
+struct EdgeHash {
+    std::size_t operator()(const Edge& e) const {
+        std::size_t h = 1469598103934665603ull;
+        for (std::uint32_t b : e.bits) h = (h ^ b) * 1099511628211ull;
+        return h;
+    }
+};
+
+Edge edge(const glm::vec3& a, const glm::vec3& b) {
+    Edge e;
+    std::memcpy(e.bits, &a, 12);
+    std::memcpy(e.bits + 3, &b, 12);
+    return e;
+}
+
+// Glass objects that are not closed and consistently wound: every directed edge must appear once,
+// and its reverse once.
+std::uint32_t countOpenGlassObjects(const Scene& scene) {
+    std::map<std::uint32_t, std::unordered_map<Edge, int, EdgeHash>> edges;
+    for (const Triangle& t : scene.triangles) {
+        if (scene.materials[t.material].model != MaterialModel::Glass) continue;
+        auto& objectEdges = edges[t.object];
+        for (int i = 0; i < 3; ++i) objectEdges[edge(t.position[i], t.position[(i + 1) % 3])] += 1;
+    }
+    std::uint32_t open = 0;
+    for (const auto& [object, objectEdges] : edges) {
+        const bool closed = std::all_of(objectEdges.begin(), objectEdges.end(), [&](const auto& entry) {
+            const Edge& e = entry.first;
+            Edge reverse;
+            std::memcpy(reverse.bits, e.bits + 3, 12);
+            std::memcpy(reverse.bits + 3, e.bits, 12);
+            const auto found = objectEdges.find(reverse);
+            return entry.second == 1 && !(reverse == e) && found != objectEdges.end() && found->second == 1;
+        });
+        if (!closed) ++open;
+    }
+    return open;
+}
+
+}  // namespace
+
+double sceneDiagonal(const std::vector<Triangle>& triangles) {
+    Box box;
+    for (const Triangle& t : triangles)
+        for (const glm::vec3& p : t.position) box.grow(p);
+    return triangles.empty() ? 0.0 : glm::length(box.max - box.min);
+}
 
 SceneFeatures analyseScene(const Scene& scene) {
     SceneFeatures f;
+    for (const Triangle& t : scene.triangles) f.materialModels |= 1u << std::uint32_t(scene.materials[t.material].model);
     std::set<std::uint32_t> used;
     for (const Triangle& t : scene.triangles) used.insert(t.material);
-    std::set<std::uint32_t> glassObjects;
-    for (const Triangle& t : scene.triangles)
-        if (scene.materials[t.material].model == MaterialModel::Glass) glassObjects.insert(t.object);
     for (std::uint32_t index : used) {
         const Material& m = scene.materials[index];
         switch (m.model) {
@@ -27,26 +117,93 @@ SceneFeatures analyseScene(const Scene& scene) {
             case MaterialModel::Normal: break;
         }
     }
-    f.glassObjects = std::uint32_t(glassObjects.size());
-    f.touchingMediaPossible = f.glassObjects >= 2;
+
+    const std::vector<Box> boxes = glassObjectBoxes(scene);
+    f.glassObjects = std::uint32_t(boxes.size());
+    // Twice the touching tolerance: a probe reaches that far on either side of a hit.
+    const double margin = 2.0 * kTouchingTolerance * sceneDiagonal(scene.triangles);
+    std::uint32_t mostOverlaps = 0;
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        std::uint32_t overlaps = 0;
+        for (std::size_t j = 0; j < boxes.size(); ++j)
+            if (i != j && boxes[i].overlaps(boxes[j], margin)) ++overlaps;
+        mostOverlaps = std::max(mostOverlaps, overlaps);
+    }
+    f.touchingMediaPossible = mostOverlaps > 0;
+    f.openGlassObjects = countOpenGlassObjects(scene);
+    f.mediumStackDepth = !f.glass ? 0
+                         : f.openGlassObjects > 0 ? gpu::kMaxMediumDepth
+                                                  : std::min<std::uint32_t>(gpu::kMaxMediumDepth, 1 + mostOverlaps);
+
+    const std::uint32_t maxDepth = scene.settings.maxDepth;
+    f.rayStackDepth = f.reflection ? std::min<std::uint32_t>(gpu::kRayStackSize, std::max(1u, maxDepth)) : 0;
+    f.textures = f.textures && !scene.textures.empty();
     f.background = scene.background.kind;
-    f.usefulDepth = f.reflection ? scene.settings.maxDepth : std::min<std::uint32_t>(1, scene.settings.maxDepth);
+    f.usefulDepth = f.reflection ? maxDepth : std::min<std::uint32_t>(1, maxDepth);
     return f;
 }
 
+namespace {
+
+const char* modelName(MaterialModel m) {
+    switch (m) {
+        case MaterialModel::Normal: return "normal";
+        case MaterialModel::Lambert: return "lambert";
+        case MaterialModel::Phong: return "opaque dielectric";
+        case MaterialModel::Glass: return "glass";
+        case MaterialModel::Mirror: return "mirror";
+    }
+    return "?";
+}
+
+constexpr MaterialModel kAllModels[] = {MaterialModel::Normal, MaterialModel::Lambert, MaterialModel::Phong,
+                                        MaterialModel::Glass, MaterialModel::Mirror};
+const char* kBackgroundNames[] = {"constant", "spherical map", "cube map"};
+
+std::vector<std::string> modelNames(const SceneFeatures& f) {
+    std::vector<std::string> names;
+    for (MaterialModel m : kAllModels)
+        if (f.uses(m)) names.emplace_back(modelName(m));
+    return names;
+}
+
+}  // namespace
+
 std::vector<std::string> SceneFeatures::describe() const {
     auto yesNo = [](bool b) { return b ? "yes" : "no"; };
-    const char* backgrounds[] = {"constant", "spherical map", "cube map"};
+    std::string models;
+    for (const std::string& name : modelNames(*this)) models += (models.empty() ? "" : ", ") + name;
     return {
+        "materials: " + (models.empty() ? std::string("none") : models),
         std::string("glass (refraction, medium stack): ") + yesNo(glass) + ", " + std::to_string(glassObjects) +
-            " objects",
+            " objects" + (openGlassObjects ? ", " + std::to_string(openGlassObjects) + " of them open or badly wound" : ""),
         std::string("absorbing media (Beer-Lambert): ") + yesNo(absorbingMedia),
         std::string("touching or nested media possible: ") + yesNo(touchingMediaPossible),
+        "medium stack depth needed: " + std::to_string(mediumStackDepth),
         std::string("reflected rays: ") + yesNo(reflection),
+        "pending-ray stack needed: " + std::to_string(rayStackDepth),
         std::string("shadow rays: ") + yesNo(shadowRays),
         std::string("textures: ") + yesNo(textures),
-        std::string("background: ") + backgrounds[int(background)],
-        "useful ray-tree depth: " + std::to_string(usefulDepth),
+        std::string("background: ") + kBackgroundNames[int(background)],
+        "useful max_depth: " + std::to_string(usefulDepth) + (usefulDepth <= 1 ? " (primary rays only)" : ""),
+    };
+}
+
+nlohmann::json toJson(const SceneFeatures& f) {
+    return {
+        {"materials", modelNames(f)},
+        {"glass", f.glass},
+        {"glass_objects", f.glassObjects},
+        {"open_glass_objects", f.openGlassObjects},
+        {"absorbing_media", f.absorbingMedia},
+        {"touching_media_possible", f.touchingMediaPossible},
+        {"medium_stack_depth", f.mediumStackDepth},
+        {"reflection", f.reflection},
+        {"ray_stack_depth", f.rayStackDepth},
+        {"shadow_rays", f.shadowRays},
+        {"textures", f.textures},
+        {"background", kBackgroundNames[int(f.background)]},
+        {"useful_max_depth", f.usefulDepth},
     };
 }
 

@@ -1,31 +1,60 @@
-// What a scene can need from the renderer (the start of "simulate only the effects a scene calls
-// for"): found once at load, printed by `vitrum info`, used to skip work the scene cannot need.
+// What a scene can need from the renderer ("simulate only the effects a scene calls for"):
+// found once at load, printed by `vitrum info`, recorded in --stats, used by both backends to skip
+// work the scene cannot need and by the Vulkan backend to specialize its kernel
+// (gpu/trace_specialization.h).
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "scene/scene.h"
 
 namespace vitrum {
 
+// Surfaces of two objects closer than this fraction of the scene's diagonal along a ray are one
+// interface (both backends). Far above float rounding of coordinates (~1e-7), far below modelled gaps.
+constexpr double kTouchingTolerance = 1e-5;
+
 struct SceneFeatures {
-    bool glass = false;              // refraction and a medium stack
-    bool absorbingMedia = false;     // some glass has Tf != 0 (Beer-Lambert)
-    bool touchingMediaPossible = false;  // two or more glass objects: surfaces may touch or nest
-    bool reflection = false;         // opaque dielectrics, mirrors or glass spawn reflected rays
-    bool shadowRays = false;         // lights and materials that use them (Lambert, Phong)
-    bool textures = false;           // some material samples map_Kd
+    std::uint32_t materialModels = 0;    // bit (1 << model) for every MaterialModel a triangle uses
+    bool glass = false;                  // refraction and a medium stack
+    bool absorbingMedia = false;         // some glass has Tf != 0 (Beer-Lambert)
+    // Two glass objects whose bounding boxes, grown by the touching tolerance, overlap: only then
+    // can their surfaces touch or one lie inside the other. Otherwise no touching probe is needed.
+    bool touchingMediaPossible = false;
+    bool reflection = false;             // opaque dielectrics, mirrors or glass spawn reflected rays
+    bool shadowRays = false;             // lights and materials that use them (Lambert, Phong)
+    bool textures = false;               // some material samples map_Kd
     BackgroundKind background = BackgroundKind::Constant;
     std::uint32_t glassObjects = 0;
-    // The deepest a ray tree can usefully go: 1 (primary rays only) without reflective or
-    // refractive materials, else the scene's max_depth.
+    // Glass objects that are not closed, consistently wound meshes (some edge is not shared by
+    // exactly two triangles in opposite directions): rays can leave them without entering, or
+    // enter twice, so the medium stack can hold more than their nesting says.
+    std::uint32_t openGlassObjects = 0;
+    // The most media a ray can be inside at once: 0 without glass; the GPU's whole stack
+    // (gpu::kMaxMediumDepth) when some glass object is open; else 1 + the most other glass objects
+    // whose boxes overlap one glass object's box (an upper bound on how deep they nest), capped
+    // at the GPU's stack.
+    std::uint32_t mediumStackDepth = 0;
+    // Pending rays of a depth-first ray tree: 0 without reflective or refractive materials, else
+    // max_depth (docs/gpu-design.md shows why that suffices), capped at gpu::kRayStackSize.
+    std::uint32_t rayStackDepth = 0;
+    // The max_depth beyond which nothing changes: 1 (primary rays only, a tree of depth 0) without
+    // reflective or refractive materials, else the scene's max_depth.
     std::uint32_t usefulDepth = 1;
 
+    bool uses(MaterialModel model) const { return (materialModels >> std::uint32_t(model) & 1u) != 0; }
     std::vector<std::string> describe() const;  // one line a feature, for `vitrum info`
 };
 
 SceneFeatures analyseScene(const Scene& scene);
+
+// Length of the diagonal of the box around every triangle (0 for an empty scene).
+double sceneDiagonal(const std::vector<Triangle>& triangles);
+
+nlohmann::json toJson(const SceneFeatures& features);
 
 }  // namespace vitrum

@@ -123,12 +123,12 @@ VITRUM_CONST uint kBackgroundCube = 2u;
 VITRUM_CONST uint kFilterBilinear = 0u;
 VITRUM_CONST uint kFilterNearest = 1u;
 
-// ---- Per-invocation trace state (storage buffer, one per pixel of a tile) ----------------------
+// ---- Per-invocation trace state (storage buffers, one entry per pixel of a tile) ---------------
 // lavapipe stops any shader loop after 65,535 iterations, silently. trace.comp therefore runs
-// one flat loop of at most `iteration budget` steps per dispatch; a pixel that is not finished
-// keeps its whole state here and the next dispatch resumes it (docs/gpu-design.md).
-VITRUM_CONST uint kRayStackSize = 16u;    // pending rays of the depth-first ray tree
-VITRUM_CONST uint kMaxMediumDepth = 4u;   // media a ray can be inside at once (trace.comp unrolls for 4)
+// at most `iteration budget` counted steps per dispatch; a pixel that is not finished keeps its
+// whole state in these buffers and the next dispatch resumes it (docs/gpu-design.md).
+VITRUM_CONST uint kRayStackSize = 16u;    // most pending rays of the depth-first ray tree
+VITRUM_CONST uint kMaxMediumDepth = 4u;   // most media a ray can be inside at once (trace.comp unrolls for 4)
 
 // A ray of the tree with everything needed to continue it later.
 struct PendingRay {
@@ -138,9 +138,11 @@ struct PendingRay {
     uvec4 media;     // object indices of the media the ray is inside, innermost last
 };
 
+// The pending rays of a pixel are not part of its TraceState: they live in their own buffer,
+// `capacity` entries a pixel (the specialized kernel's kPendingRayCapacity, sized to what the
+// scene can reach), read and written in place, so suspending a pixel never copies them.
 struct TraceState {
     PendingRay ray;                      // the ray being traced (or shaded)
-    PendingRay pending[kRayStackSize];   // rays waiting to be traced
     vec4 traceOrigin;                    // the ray of the current traversal; .w = tMin
     vec4 traceDirection;                 // .w = closest t so far (the traversal's tMax)
     vec4 hitPosition;                    // .w = hit t of `ray`
@@ -180,7 +182,8 @@ VITRUM_CONST uint kStatMaxRayDepth = 16u;        // deepest ray traced (atomicMa
 VITRUM_CONST uint kStatMaxMediumDepth = 17u;     // most media one ray was inside (atomicMax)
 VITRUM_CONST uint kStatTouchingInterfaces = 18u; // glass hits where other objects' surfaces touch
 VITRUM_CONST uint kStatInconsistentMedia = 19u;  // a ray left an object it was not inside
-VITRUM_CONST uint kStatCount = 20u;
+VITRUM_CONST uint kStatTouchingProbes = 20u;     // touching probes run (traversals around a glass hit)
+VITRUM_CONST uint kStatCount = 21u;
 
 // ---- Sampling -------------------------------------------------------------------------------
 // The integer hash both backends use for jitter, so that their samples are bit-identical:

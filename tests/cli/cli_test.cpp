@@ -114,3 +114,30 @@ TEST_F(Cli, InfoReportsTrianglesAndBvh) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(Cli, NoSpecializeRendersTheSameImageWithTheGeneralKernel) {
+    const std::string scene = std::string(VITRUM_SOURCE_DIR) + "/scenes/touching_cubes.json --width 48 --height 36";
+    CommandRun specialized =
+        vitrum("render " + scene + " -o " + path("specialized.pfm") + " --stats " + path("specialized.json"));
+    ASSERT_EQ(specialized.exitCode, 0) << specialized.output;
+    CommandRun general = vitrum("render " + scene + " --no-specialize -o " + path("general.pfm") + " --stats " +
+                                path("general.json"));
+    ASSERT_EQ(general.exitCode, 0) << general.output;
+    std::ifstream a(path("specialized.pfm"), std::ios::binary), b(path("general.pfm"), std::ios::binary);
+    const std::string bytesA((std::istreambuf_iterator<char>(a)), {}), bytesB((std::istreambuf_iterator<char>(b)), {});
+    EXPECT_GT(bytesA.size(), 48u * 36u * 12u);
+    EXPECT_TRUE(bytesA == bytesB) << "the two kernels' images differ";
+    nlohmann::json s = nlohmann::json::parse(std::ifstream(path("specialized.json")));
+    nlohmann::json g = nlohmann::json::parse(std::ifstream(path("general.json")));
+    EXPECT_EQ(s["kernel"]["specialized"], true);
+    EXPECT_EQ(g["kernel"]["specialized"], false);
+    EXPECT_EQ(s["kernel"]["medium_stack_depth"], 2);  // two cubes sharing a face
+    EXPECT_EQ(g["kernel"]["medium_stack_depth"], 4);
+    EXPECT_EQ(s["features"]["touching_media_possible"], true);
+    EXPECT_LT(s["kernel"]["state_bytes_per_pixel"].get<int>(), g["kernel"]["state_bytes_per_pixel"].get<int>());
+    EXPECT_TRUE(s["seconds"].contains("compile"));
+}
+
+}  // namespace

@@ -10,6 +10,7 @@
 #include "cpu/ray_offset.h"
 #include "cpu/reference_renderer.h"
 #include "render/sampling.h"
+#include "scene/scene_loader.h"
 
 namespace vitrum {
 namespace {
@@ -619,6 +620,32 @@ TEST(ReferenceRenderer, ProgressReachesOne) {
     renderReference(scene, bvh, options, stats);
     EXPECT_EQ(calls.load(), int(scene.camera.height));
     EXPECT_EQ(last.load(), 1.0);
+}
+
+}  // namespace
+}  // namespace vitrum
+
+namespace vitrum {
+namespace {
+
+// The CPU reference takes the scene's analysis too: it probes for touching surfaces only where
+// two glass objects' boxes overlap, and the probe still finds the touching cubes' shared face.
+TEST(ReferenceRenderer, ProbesForTouchingSurfacesOnlyWhereObjectsCanTouch) {
+    auto render = [](const std::string& file) {
+        Scene scene = loadScene(std::string(VITRUM_SOURCE_DIR) + "/" + file);
+        scene.camera.width = 32;
+        scene.camera.height = 24;
+        RenderStats stats;
+        renderReference(scene, buildBvh(scene.triangles), ReferenceOptions{}, stats);
+        return stats;
+    };
+    RenderStats spheres = render("scenes/course/geospheres_5x5_glass.json");  // 25 separate spheres
+    EXPECT_GT(spheres.rays.refraction, 0u);
+    EXPECT_EQ(spheres.touchingProbes, 0u);
+    EXPECT_FALSE(spheres.features.touchingMediaPossible);
+    RenderStats cubes = render("scenes/touching_cubes.json");
+    EXPECT_TRUE(cubes.features.touchingMediaPossible);
+    EXPECT_GT(cubes.touchingProbes, 0u);
 }
 
 }  // namespace

@@ -1,41 +1,172 @@
-// Scene analysis: what each project scene can need, checked against what the scene contains.
+// Scene analysis: what each scene can need, checked against what the scene contains, and the
+// kernel specialization made from it.
 #include <gtest/gtest.h>
 
 #include "render/scene_features.h"
+#include "render/trace_specialization.h"
 #include "scene/scene_loader.h"
+#include "shared/gpu_types.h"
 
 namespace vitrum {
 namespace {
 
-SceneFeatures featuresOf(const std::string& scene) {
-    return analyseScene(loadScene(std::string(VITRUM_SOURCE_DIR) + "/" + scene));
-}
+Scene loadProjectScene(const std::string& scene) { return loadScene(std::string(VITRUM_SOURCE_DIR) + "/" + scene); }
+SceneFeatures featuresOf(const std::string& scene) { return analyseScene(loadProjectScene(scene)); }
 
-TEST(SceneFeatures, OpaqueLambertSceneNeedsNoGlassAndNoSecondaryRays) {
-    SceneFeatures f = featuresOf("scenes/course/cornell_box2.json");
-    // cornell_box2 has a clear_glass sphere: glass, one object.
-    EXPECT_TRUE(f.glass);
-    EXPECT_EQ(f.glassObjects, 1u);
-    EXPECT_FALSE(f.touchingMediaPossible);
+TEST(SceneFeatures, LambertOnlySceneNeedsNoSecondaryRaysAndNoStacks) {
     SceneFeatures g = featuresOf("scenes/course/geospheres_5x5.json");  // shader 5: Lambert only
+    EXPECT_EQ(g.materialModels, 1u << std::uint32_t(MaterialModel::Lambert));
     EXPECT_FALSE(g.glass);
     EXPECT_FALSE(g.reflection);
     EXPECT_TRUE(g.shadowRays);
     EXPECT_EQ(g.usefulDepth, 1u);
+    EXPECT_EQ(g.mediumStackDepth, 0u);
+    EXPECT_EQ(g.rayStackDepth, 0u);
+    EXPECT_EQ(g.background, BackgroundKind::Constant);
 }
 
-TEST(SceneFeatures, GlassScenesReportTheirMedia) {
+TEST(SceneFeatures, SeparateGlassObjectsNeedAMediumStackOfOne) {
+    // 25 glass spheres on a grid, none touching another: a ray is inside at most one of them.
+    SceneFeatures f = featuresOf("scenes/course/geospheres_5x5_glass.json");
+    EXPECT_TRUE(f.glass);
+    EXPECT_EQ(f.glassObjects, 25u);
+    EXPECT_FALSE(f.touchingMediaPossible);
+    EXPECT_EQ(f.mediumStackDepth, 1u);
+    EXPECT_EQ(f.rayStackDepth, 10u);  // max_depth 10
+    SceneFeatures cornell = featuresOf("scenes/course/cornell_box2.json");  // one clear_glass sphere
+    EXPECT_EQ(cornell.glassObjects, 1u);
+    EXPECT_FALSE(cornell.touchingMediaPossible);
+    EXPECT_EQ(cornell.mediumStackDepth, 1u);
+}
+
+TEST(SceneFeatures, TouchingAndNestedGlassNeedsTheProbeAndADeeperStack) {
     SceneFeatures touching = featuresOf("scenes/touching_cubes.json");
-    EXPECT_TRUE(touching.glass);
     EXPECT_EQ(touching.glassObjects, 2u);
     EXPECT_TRUE(touching.touchingMediaPossible);
+    EXPECT_EQ(touching.mediumStackDepth, 2u);
     EXPECT_EQ(touching.usefulDepth, 10u);
+    SceneFeatures bubble = featuresOf("scenes/bubble.json");  // an air bubble inside a glass block
+    EXPECT_TRUE(bubble.touchingMediaPossible);
+    EXPECT_EQ(bubble.mediumStackDepth, 2u);
     SceneFeatures green = featuresOf("scenes/plastics_green_glass.json");
     EXPECT_TRUE(green.absorbingMedia);  // Tf 0.4 0.001 0.4
-    SceneFeatures demo = featuresOf("scenes/demo.json");
-    EXPECT_TRUE(demo.absorbingMedia);
+    EXPECT_TRUE(featuresOf("scenes/demo.json").absorbingMedia);
     EXPECT_EQ(featuresOf("scenes/glass_sphere_cube.json").background, BackgroundKind::Cube);
     EXPECT_EQ(featuresOf("scenes/glass_sphere_spherical.json").background, BackgroundKind::Spherical);
+}
+
+// A closed, outward-wound glass box lo..hi as a new object.
+void addGlassBox(Scene& scene, glm::vec3 lo, glm::vec3 hi) {
+    const std::uint32_t object = std::uint32_t(scene.objectNames.size());
+    scene.objectNames.push_back("box " + std::to_string(object));
+    auto corner = [&](int i, int j, int k) { return glm::vec3(i ? hi.x : lo.x, j ? hi.y : lo.y, k ? hi.z : lo.z); };
+    const int faces[6][4][3] = {{{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}},
+                                {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},
+                                {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
+    for (const auto& f : faces) {
+        glm::vec3 q[4];
+        for (int v = 0; v < 4; ++v) q[v] = corner(f[v][0], f[v][1], f[v][2]);
+        for (const auto& [b, c] : {std::pair{1, 2}, std::pair{2, 3}}) {
+            Triangle t;
+            t.position[0] = q[0];
+            t.position[1] = q[b];
+            t.position[2] = q[c];
+            t.object = object;
+            scene.triangles.push_back(t);
+        }
+    }
+}
+
+Scene glassScene() {
+    Scene scene;
+    Material glass;
+    glass.model = MaterialModel::Glass;
+    scene.materials.push_back(glass);
+    return scene;
+}
+
+TEST(SceneFeatures, MediumStackDepthCountsOverlappingBoxes) {
+    Scene apart = glassScene();
+    for (int i = 0; i < 5; ++i) addGlassBox(apart, {3.0f * i, 0, 0}, {3.0f * i + 2, 2, 2});  // gaps of 1
+    EXPECT_EQ(analyseScene(apart).openGlassObjects, 0u);
+    EXPECT_FALSE(analyseScene(apart).touchingMediaPossible);
+    EXPECT_EQ(analyseScene(apart).mediumStackDepth, 1u);
+
+    // A gap far below the touching tolerance (1e-5 of the diagonal, here ~1.2e-4) is touching;
+    // one of 1e-3 is not.
+    for (const auto& [gap, touching] : {std::pair{1e-6f, true}, std::pair{1e-3f, false}}) {
+        Scene close = glassScene();
+        addGlassBox(close, {0, 0, 0}, {2, 2, 2});
+        addGlassBox(close, {2 + gap, 0, 0}, {4, 2, 2});
+        addGlassBox(close, {10, 0, 0}, {12, 2, 2});
+        EXPECT_EQ(analyseScene(close).touchingMediaPossible, touching) << "gap " << gap;
+        EXPECT_EQ(analyseScene(close).mediumStackDepth, touching ? 2u : 1u) << "gap " << gap;
+    }
+
+    // Boxes nested three deep need 3; six deep are capped at the GPU's stack.
+    Scene nested = glassScene();
+    for (int i = 0; i < 3; ++i) addGlassBox(nested, glm::vec3(float(i)), glm::vec3(10.0f - i));
+    EXPECT_EQ(analyseScene(nested).mediumStackDepth, 3u);
+    for (int i = 3; i < 6; ++i) addGlassBox(nested, glm::vec3(float(i)), glm::vec3(10.0f - i));
+    EXPECT_EQ(analyseScene(nested).mediumStackDepth, gpu::kMaxMediumDepth);
+}
+
+TEST(SceneFeatures, OpenOrBadlyWoundGlassGetsTheWholeMediumStack) {
+    // A ray can leave an open mesh without having entered it, or enter one twice: its nesting
+    // says nothing, so the stack keeps the general size (the same image as the general kernel).
+    Scene open = glassScene();
+    addGlassBox(open, {0, 0, 0}, {1, 1, 1});
+    addGlassBox(open, {3, 0, 0}, {4, 1, 1});
+    open.triangles.pop_back();
+    EXPECT_EQ(analyseScene(open).openGlassObjects, 1u);
+    EXPECT_EQ(analyseScene(open).mediumStackDepth, gpu::kMaxMediumDepth);
+    Scene inverted = glassScene();
+    addGlassBox(inverted, {0, 0, 0}, {1, 1, 1});
+    std::swap(inverted.triangles[0].position[1], inverted.triangles[0].position[2]);  // one triangle inside out
+    EXPECT_EQ(analyseScene(inverted).openGlassObjects, 1u);
+    Scene duplicated = glassScene();
+    addGlassBox(duplicated, {0, 0, 0}, {1, 1, 1});
+    duplicated.triangles.push_back(duplicated.triangles[0]);
+    EXPECT_EQ(analyseScene(duplicated).openGlassObjects, 1u);
+}
+
+TEST(SceneFeatures, PendingRayStackFollowsMaxDepthUpToTheGpuStack) {
+    Scene scene = glassScene();
+    addGlassBox(scene, {0, 0, 0}, {1, 1, 1});
+    for (std::uint32_t depth : {1u, 2u, 10u, 16u}) {
+        scene.settings.maxDepth = depth;
+        EXPECT_EQ(analyseScene(scene).rayStackDepth, depth);
+    }
+    scene.settings.maxDepth = 40;
+    EXPECT_EQ(analyseScene(scene).rayStackDepth, gpu::kRayStackSize);
+}
+
+TEST(TraceSpecialization, LambertSceneGetsAKernelWithoutGlassOrStacks) {
+    Scene scene = loadProjectScene("scenes/course/geospheres_5x5.json");
+    TraceSpecialization s = TraceSpecialization::forScene(scene, analyseScene(scene));
+    EXPECT_TRUE(s.specialized);
+    EXPECT_EQ(s.materialModels, 1u << std::uint32_t(MaterialModel::Lambert));
+    EXPECT_TRUE(s.shadowRays);
+    EXPECT_FALSE(s.absorption);
+    EXPECT_FALSE(s.touchingProbe);
+    EXPECT_FALSE(s.textures);
+    EXPECT_EQ(s.backgroundKind, std::uint32_t(BackgroundKind::Constant));
+    EXPECT_EQ(s.pendingRayCapacity, 0u);
+    EXPECT_EQ(s.mediumStackDepth, 1u);  // never used without glass; 1 keeps the code well-formed
+
+    TraceSpecialization general = TraceSpecialization::general();
+    EXPECT_FALSE(general.specialized);
+    EXPECT_EQ(general.materialModels, 0xFFFFFFFFu);
+    EXPECT_EQ(general.mediumStackDepth, gpu::kMaxMediumDepth);
+    EXPECT_EQ(general.pendingRayCapacity, gpu::kRayStackSize);
+    EXPECT_EQ(general.backgroundKind, TraceSpecialization::kAnyKind);
+    // The constants in constant_id order (shaders/specialization.glsl).
+    const auto c = s.constants();
+    EXPECT_EQ(c[0], s.materialModels);
+    EXPECT_EQ(c[1], 1u);  // shadow rays
+    EXPECT_EQ(c[3], 0u);  // touching probe
+    EXPECT_EQ(c[8], 1u);  // medium stack depth
+    EXPECT_EQ(c[9], 0u);  // pending rays
 }
 
 }  // namespace

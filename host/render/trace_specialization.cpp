@@ -1,0 +1,104 @@
+#include "render/trace_specialization.h"
+
+#include <algorithm>
+
+#include <nlohmann/json.hpp>
+
+#include "shared/gpu_types.h"
+
+namespace vitrum {
+
+TraceSpecialization TraceSpecialization::general() {
+    TraceSpecialization s;
+    s.mediumStackDepth = gpu::kMaxMediumDepth;
+    s.pendingRayCapacity = gpu::kRayStackSize;
+    return s;
+}
+
+TraceSpecialization TraceSpecialization::forScene(const Scene& scene, const SceneFeatures& f) {
+    TraceSpecialization s;
+    s.specialized = true;
+    s.materialModels = f.materialModels;
+    s.shadowRays = f.shadowRays;
+    s.absorption = f.absorbingMedia;
+    s.touchingProbe = f.touchingMediaPossible;
+    s.textures = f.textures;
+    s.backgroundKind = std::uint32_t(f.background);
+    s.fresnelModel = std::uint32_t(scene.settings.fresnel);
+    s.textureFilter = std::uint32_t(scene.settings.filter);
+    // The kernel's loops over these stacks are unrolled up to the general sizes; at least one
+    // entry each keeps the unused code well-formed (it is never reached).
+    s.mediumStackDepth = std::max(1u, f.mediumStackDepth);
+    s.pendingRayCapacity = f.rayStackDepth;
+    return s;
+}
+
+std::array<std::uint32_t, 10> TraceSpecialization::constants() const {
+    return {materialModels,
+            shadowRays ? 1u : 0u,
+            absorption ? 1u : 0u,
+            touchingProbe ? 1u : 0u,
+            textures ? 1u : 0u,
+            backgroundKind,
+            fresnelModel,
+            textureFilter,
+            mediumStackDepth,
+            pendingRayCapacity};
+}
+
+namespace {
+
+std::string kindName(std::uint32_t kind, std::initializer_list<const char*> names) {
+    if (kind == TraceSpecialization::kAnyKind) return "any (run time)";
+    return kind < names.size() ? names.begin()[kind] : "?";
+}
+
+std::string modelList(std::uint32_t mask) {
+    if (mask == 0xFFFFFFFFu) return "all";
+    const std::pair<MaterialModel, const char*> models[] = {{MaterialModel::Normal, "normal"},
+                                                            {MaterialModel::Lambert, "lambert"},
+                                                            {MaterialModel::Phong, "opaque dielectric"},
+                                                            {MaterialModel::Glass, "glass"},
+                                                            {MaterialModel::Mirror, "mirror"}};
+    std::string list;
+    for (const auto& [model, name] : models)
+        if (mask >> std::uint32_t(model) & 1u) list += (list.empty() ? "" : ", ") + std::string(name);
+    return list.empty() ? "none" : list;
+}
+
+}  // namespace
+
+std::vector<std::string> TraceSpecialization::describe() const {
+    auto onOff = [](bool b) { return b ? "compiled in" : "removed"; };
+    return {
+        std::string("kernel: ") + (specialized ? "specialized for this scene" : "general"),
+        "material models: " + modelList(materialModels),
+        std::string("shadow rays: ") + onOff(shadowRays),
+        std::string("Beer-Lambert absorption: ") + onOff(absorption),
+        std::string("touching probe: ") + onOff(touchingProbe),
+        std::string("textures: ") + onOff(textures),
+        "background: " + kindName(backgroundKind, {"constant", "spherical map", "cube map"}),
+        "fresnel: " + kindName(fresnelModel, {"schlick", "exact", "schlick-exp2"}),
+        "filter: " + kindName(textureFilter, {"bilinear", "nearest"}),
+        "medium stack: " + std::to_string(mediumStackDepth) + " media a ray",
+        "pending-ray stack: " + std::to_string(pendingRayCapacity) + " rays a pixel",
+    };
+}
+
+nlohmann::json toJson(const TraceSpecialization& s) {
+    return {
+        {"specialized", s.specialized},
+        {"material_models", modelList(s.materialModels)},
+        {"shadow_rays", s.shadowRays},
+        {"absorption", s.absorption},
+        {"touching_probe", s.touchingProbe},
+        {"textures", s.textures},
+        {"background", kindName(s.backgroundKind, {"constant", "spherical map", "cube map"})},
+        {"fresnel", kindName(s.fresnelModel, {"schlick", "exact", "schlick-exp2"})},
+        {"filter", kindName(s.textureFilter, {"bilinear", "nearest"})},
+        {"medium_stack_depth", s.mediumStackDepth},
+        {"pending_ray_capacity", s.pendingRayCapacity},
+    };
+}
+
+}  // namespace vitrum

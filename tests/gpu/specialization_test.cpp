@@ -1,0 +1,123 @@
+// The kernel specialized for a scene's features against the general kernel: the same image, bit
+// for bit, on every scene of the project and of the course, with the same rays and limits, while
+// the specialized kernel skips the touching probes that could find nothing.
+#include <cstring>
+#include <filesystem>
+
+#include "gpu_test_support.h"
+#include "render/scene_features.h"
+
+namespace vitrum::testing {
+namespace {
+
+std::vector<std::string> projectScenes() {
+    std::vector<std::string> scenes;
+    for (const char* folder : {"scenes", "scenes/course"})
+        for (const auto& entry : std::filesystem::directory_iterator(sourcePath(folder)))
+            if (entry.path().extension() == ".json")
+                scenes.push_back(std::string(folder) + "/" + entry.path().filename().string());
+    std::sort(scenes.begin(), scenes.end());
+    return scenes;
+}
+
+Image renderOnGpu(const Scene& scene, const Bvh& bvh, bool specialize, RenderStats& stats) {
+    VulkanRenderOptions options;
+    options.specialize = specialize;
+    const std::uint32_t before = testDevice().validationMessages();
+    Image image = renderVulkan(testDevice(), scene, bvh, options, stats);
+    EXPECT_EQ(testDevice().validationMessages(), before) << "Vulkan validation messages while rendering";
+    return image;
+}
+
+void expectSameWork(const RenderStats& a, const RenderStats& b) {
+    EXPECT_EQ(a.rays.primary, b.rays.primary);
+    EXPECT_EQ(a.rays.shadow, b.rays.shadow);
+    EXPECT_EQ(a.rays.reflection, b.rays.reflection);
+    EXPECT_EQ(a.rays.refraction, b.rays.refraction);
+    EXPECT_EQ(a.limits.depthLimit, b.limits.depthLimit);
+    EXPECT_EQ(a.limits.rayStackOverflow, b.limits.rayStackOverflow);
+    EXPECT_EQ(a.limits.mediumStackOverflow, b.limits.mediumStackOverflow);
+    EXPECT_EQ(a.limits.inconsistentMedia, b.limits.inconsistentMedia);
+    EXPECT_EQ(a.limits.weightCuts, b.limits.weightCuts);
+    EXPECT_EQ(a.totalInternalReflections, b.totalInternalReflections);
+    EXPECT_EQ(a.touchingInterfaces, b.touchingInterfaces);
+    EXPECT_EQ(a.maxRayDepth, b.maxRayDepth);
+    EXPECT_EQ(a.maxMediumDepth, b.maxMediumDepth);
+}
+
+class Specialization : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(Specialization, SpecializedAndGeneralKernelsGiveTheSameImage) {
+    Scene scene = loadScene(sourcePath(GetParam()));
+    scene.camera.width = 40;
+    scene.camera.height = 30;
+    Bvh bvh = buildBvh(scene.triangles);
+    RenderStats general, specialized;
+    Image a = renderOnGpu(scene, bvh, false, general);
+    Image b = renderOnGpu(scene, bvh, true, specialized);
+    ASSERT_TRUE(general.kernel && specialized.kernel);
+    EXPECT_FALSE(general.kernel->specialized);
+    EXPECT_TRUE(specialized.kernel->specialized);
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+        if (std::memcmp(&a.pixels[i], &b.pixels[i], sizeof(glm::vec3)) != 0) ++differing;
+    EXPECT_EQ(differing, 0u) << "pixels that differ in any bit, of " << a.pixels.size();
+    EXPECT_GT(imageSpread(a), 0.0) << "a constant image would match anything";
+    EXPECT_GT(general.rays.total(), 0u);
+    expectSameWork(general, specialized);
+    // The specialized kernel never overflows a stack that the general one does not: its stacks
+    // are sized to what the scene can reach.
+    EXPECT_LE(specialized.stateBytesPerPixel, general.stateBytesPerPixel);
+    EXPECT_LE(specialized.touchingProbes, general.touchingProbes);
+    if (!specialized.features.touchingMediaPossible) EXPECT_EQ(specialized.touchingProbes, 0u);
+    else EXPECT_EQ(specialized.touchingProbes, general.touchingProbes);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryScene, Specialization, ::testing::ValuesIn(projectScenes()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                             std::string name = info.param.substr(0, info.param.size() - 5);
+                             for (char& c : name)
+                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                             return name;
+                         });
+
+TEST(Specialization, SeparateGlassSpheresRunNoTouchingProbeInTheSpecializedKernel) {
+    // The course's 25 glass spheres: the general kernel probes at every glass hit (the scene has
+    // two or more glass objects), the specialized one knows that no two spheres' boxes overlap.
+    Scene scene = loadScene(sourcePath("scenes/course/geospheres_5x5_glass.json"));
+    scene.camera.width = 48;
+    scene.camera.height = 36;
+    Bvh bvh = buildBvh(scene.triangles);
+    RenderStats general, specialized;
+    renderOnGpu(scene, bvh, false, general);
+    renderOnGpu(scene, bvh, true, specialized);
+    EXPECT_GT(general.touchingProbes, 100u);
+    EXPECT_EQ(specialized.touchingProbes, 0u);
+    EXPECT_EQ(specialized.kernel->mediumStackDepth, 1u);
+    EXPECT_EQ(specialized.kernel->pendingRayCapacity, 10u);
+    EXPECT_EQ(specialized.maxMediumDepth, 1u);
+    EXPECT_EQ(specialized.limits.mediumStackOverflow, 0u);
+    EXPECT_EQ(specialized.stateBytesPerPixel, sizeof(gpu::TraceState) + 10 * sizeof(gpu::PendingRay));
+    EXPECT_EQ(general.stateBytesPerPixel, sizeof(gpu::TraceState) + 16 * sizeof(gpu::PendingRay));
+}
+
+TEST(Specialization, DeepTreeFitsTheSizedPendingStack) {
+    // Glass at max_depth 15 gets a pending-ray stack of 15 instead of 16: no branch may overflow.
+    Scene scene = loadScene(sourcePath("scenes/touching_cubes.json"));
+    scene.camera.width = 32;
+    scene.camera.height = 24;
+    scene.settings.maxDepth = 15;
+    scene.settings.fresnel = FresnelModel::Exact;
+    Bvh bvh = buildBvh(scene.triangles);
+    RenderStats general, specialized;
+    Image a = renderOnGpu(scene, bvh, false, general);
+    Image b = renderOnGpu(scene, bvh, true, specialized);
+    EXPECT_EQ(specialized.kernel->pendingRayCapacity, 15u);
+    EXPECT_EQ(specialized.limits.rayStackOverflow, 0u);
+    EXPECT_GT(specialized.maxRayDepth, 10u);
+    EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec3)), 0);
+}
+
+}  // namespace
+}  // namespace vitrum::testing
