@@ -3,8 +3,9 @@
 BUILD ?= build
 JOBS ?= $(shell nproc)
 DEMO_SCENE ?= scenes/demo.json
+BENCH_RUNS ?= 5
 
-.PHONY: all deps configure build demo test clean fuzz fuzz-deps sanitize
+.PHONY: all deps configure build demo test clean fuzz fuzz-deps sanitize bench-specialization bench-bvh
 
 all: build
 
@@ -26,6 +27,15 @@ demo: build
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+# Benchmarks: each regenerates its report in docs/ (several minutes on 2 cores).
+bench-specialization: build
+	VK_ICD_FILENAMES=$${VK_ICD_FILENAMES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json} \
+	  $(BUILD)/bench/vitrum_bench_specialization docs/specialization.md $(BENCH_RUNS)
+
+bench-bvh: build
+	$(BUILD)/bench/vitrum_bench_bvh $(BENCH_RUNS) > docs/performance.md.partial
+	mv docs/performance.md.partial docs/performance.md
 
 # Not part of the quick start (docs/testing.md): libFuzzer on the scene and image loaders for
 # FUZZ_SECONDS per target, in its own clang build; and the whole suite under ASan + UBSan.

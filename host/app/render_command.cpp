@@ -282,6 +282,10 @@ int renderCommand(int argc, char** argv, int first) {
     std::printf("device: %s (%s)\n", stats.device.c_str(), stats.backend.c_str());
     std::printf("image: %ux%u, %u spp, max depth %u -> %s\n", scene.camera.width, scene.camera.height,
                 scene.settings.samplesPerPixel, scene.settings.maxDepth, command.outputPath.c_str());
+    if (stats.kernel)
+        std::printf("kernel: %s (medium stack %u, pending rays %u), compiled in %.3f s\n",
+                    stats.kernel->specialized ? "specialized for the scene" : "general", stats.kernel->mediumStackDepth,
+                    stats.kernel->pendingRayCapacity, stats.seconds("pipeline") + stats.seconds("compile"));
     std::printf("time: %.3f s rendering, %.3f s in all\n", renderSeconds, totalSeconds);
     std::printf("rays: %llu (%.2f Mrays/s): %llu primary, %llu shadow, %llu reflection, %llu refraction\n",
                 (unsigned long long)stats.rays.total(),
