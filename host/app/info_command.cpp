@@ -13,6 +13,7 @@
 #include "image/image_diff.h"
 #include "render/scene_features.h"
 #include "render/trace_specialization.h"
+#include "scene/scene_names.h"
 #include "shared/gpu_types.h"
 #include "scene/scene_loader.h"
 
@@ -25,24 +26,9 @@ bool wantsHelp(int argc, char** argv, int first) {
     return false;
 }
 
-const char* modelName(MaterialModel model) {
-    switch (model) {
-        case MaterialModel::Normal: return "normal (1)";
-        case MaterialModel::Lambert: return "Lambert (2)";
-        case MaterialModel::Phong: return "opaque dielectric (3)";
-        case MaterialModel::Glass: return "glass (4)";
-        case MaterialModel::Mirror: return "mirror (6)";
-    }
-    return "?";
-}
-
-const char* fresnelName(FresnelModel model) {
-    switch (model) {
-        case FresnelModel::Schlick: return "schlick";
-        case FresnelModel::Exact: return "exact";
-        case FresnelModel::SchlickExp2: return "schlick-exp2";
-    }
-    return "?";
+// "glass (4)": the model and its MTL `shader` number.
+std::string modelName(MaterialModel model) {
+    return std::string(materialModelName(model)) + " (" + std::to_string(std::uint32_t(model)) + ")";
 }
 
 }  // namespace
@@ -63,7 +49,7 @@ int infoCommand(int argc, char** argv, int first) {
     std::printf("materials: %zu\n", scene.materials.size());
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];
-        std::printf("  %-28s %-22s %7zu triangles", m.name.c_str(), modelName(m.model), trianglesPerMaterial[i]);
+        std::printf("  %-28s %-22s %7zu triangles", m.name.c_str(), modelName(m.model).c_str(), trianglesPerMaterial[i]);
         if (m.model == MaterialModel::Glass || m.model == MaterialModel::Phong) std::printf("  Ni %.3g", m.ior);
         if (m.model == MaterialModel::Glass)
             std::printf("  Tf %.3g %.3g %.3g", m.attenuation.x, m.attenuation.y, m.attenuation.z);
@@ -89,7 +75,7 @@ int infoCommand(int argc, char** argv, int first) {
     std::printf("background: (%g, %g, %g), air IOR %g\n", scene.background.colour.x, scene.background.colour.y,
                 scene.background.colour.z, scene.airIor);
     std::printf("render: %u spp, max depth %u, fresnel %s, min weight %g\n", scene.settings.samplesPerPixel,
-                scene.settings.maxDepth, fresnelName(scene.settings.fresnel), scene.settings.minWeight);
+                scene.settings.maxDepth, fresnelModelName(scene.settings.fresnel), scene.settings.minWeight);
     const BvhStats& s = bvh.stats;
     std::printf("bvh: %u nodes, %u leaves, depth %u, at most %u triangles a leaf, SAH cost %.2f, built in %.3f s\n",
                 s.nodeCount, s.leafCount, s.maxDepth, s.maxLeafTriangles, s.sahCost, s.buildSeconds);

@@ -73,11 +73,6 @@ std::vector<std::uint32_t> objectMediumMaterials(const Scene& scene) {
     return result;
 }
 
-double boundsDiagonal(const Bvh& bvh) {
-    if (bvh.nodes.empty()) return 0.0;
-    return glm::length(glm::dvec3(bvh.nodes[0].boundsMax) - glm::dvec3(bvh.nodes[0].boundsMin));
-}
-
 template <class Real>
 class ReferenceTracer {
 public:
@@ -85,14 +80,14 @@ public:
     using Color = glm::vec<3, Real>;
     using MediumStack = std::vector<std::uint32_t>;  // objects the ray is inside, innermost last
 
-    ReferenceTracer(const Scene& scene, const Bvh& bvh)
+    ReferenceTracer(const Scene& scene, const Bvh& bvh, const SceneFeatures& features)
         : scene_(scene),
           bvh_(bvh),
           vertices_(packTriangleVertices(bvh, scene.triangles)),
           mediumMaterials_(objectMediumMaterials(scene)),
           maxDepth_(scene.settings.maxDepth),
-          touchTolerance_(boundsDiagonal(bvh) * Real(kTouchingTolerance)),
-          touchingPossible_(analyseScene(scene).touchingMediaPossible),
+          touchTolerance_(Real(features.touchingDistance)),
+          touchingPossible_(features.touchingMediaPossible),
           minWeight_(Real(scene.settings.minWeight)),
           offsetScale_(rayOffsetScale(scene.triangles)) {
         const Camera& c = scene.camera;
@@ -411,7 +406,7 @@ private:
 template <class Real>
 void renderRows(const Scene& scene, const Bvh& bvh, unsigned threadCount, const ReferenceOptions& options,
                 Image& image, RenderStats& stats) {
-    const ReferenceTracer<Real> tracer(scene, bvh);
+    const ReferenceTracer<Real> tracer(scene, bvh, stats.features);
     const std::uint32_t width = scene.camera.width, height = scene.camera.height;
     std::atomic<std::uint32_t> nextRow{0};
     std::atomic<std::uint32_t> rowsDone{0};

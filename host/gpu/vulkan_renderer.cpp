@@ -97,10 +97,8 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
 
     gpu::RenderParams p = makeRenderParams(scene);
     p.counts.w = options.iterationBudget;
-    // Surfaces of different glass objects within 1e-5 of the scene's diagonal touch (the same
-    // tolerance as the CPU reference); with fewer than two glass objects nothing can touch.
-    if (!bvh.nodes.empty())
-        p.tuning.y = float(1e-5 * glm::length(glm::dvec3(bvh.nodes[0].boundsMax) - glm::dvec3(bvh.nodes[0].boundsMin)));
+    // Surfaces of different glass objects closer than this touch (the CPU reference's distance too).
+    p.tuning.y = float(stats.features.touchingDistance);
     // Whether to run the touching probe at glass hits. The general kernel asks only whether the
     // scene has two glass objects; the specialized one has the analysis's answer compiled in
     // (boxes that overlap), so it skips probes that could find nothing.

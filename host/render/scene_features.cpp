@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scene/scene_names.h"
 #include "shared/gpu_types.h"
 
 namespace vitrum {
@@ -63,6 +64,13 @@ Edge edge(const glm::vec3& a, const glm::vec3& b) {
     return e;
 }
 
+Edge reversed(const Edge& e) {
+    Edge r;
+    std::memcpy(r.bits, e.bits + 3, 12);
+    std::memcpy(r.bits + 3, e.bits, 12);
+    return r;
+}
+
 // Glass objects that are not closed and consistently wound: every directed edge must appear once,
 // and its reverse once.
 std::uint32_t countOpenGlassObjects(const Scene& scene) {
@@ -75,12 +83,9 @@ std::uint32_t countOpenGlassObjects(const Scene& scene) {
     std::uint32_t open = 0;
     for (const auto& [object, objectEdges] : edges) {
         const bool closed = std::all_of(objectEdges.begin(), objectEdges.end(), [&](const auto& entry) {
-            const Edge& e = entry.first;
-            Edge reverse;
-            std::memcpy(reverse.bits, e.bits + 3, 12);
-            std::memcpy(reverse.bits + 3, e.bits, 12);
+            const Edge reverse = reversed(entry.first);
             const auto found = objectEdges.find(reverse);
-            return entry.second == 1 && !(reverse == e) && found != objectEdges.end() && found->second == 1;
+            return entry.second == 1 && !(reverse == entry.first) && found != objectEdges.end() && found->second == 1;
         });
         if (!closed) ++open;
     }
@@ -120,8 +125,9 @@ SceneFeatures analyseScene(const Scene& scene) {
 
     const std::vector<Box> boxes = glassObjectBoxes(scene);
     f.glassObjects = std::uint32_t(boxes.size());
-    // Twice the touching tolerance: a probe reaches that far on either side of a hit.
-    const double margin = 2.0 * kTouchingTolerance * sceneDiagonal(scene.triangles);
+    f.touchingDistance = kTouchingTolerance * sceneDiagonal(scene.triangles);
+    // Boxes grown by twice the touching distance: a probe reaches that far on either side of a hit.
+    const double margin = 2.0 * f.touchingDistance;
     std::uint32_t mostOverlaps = 0;
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         std::uint32_t overlaps = 0;
@@ -143,36 +149,17 @@ SceneFeatures analyseScene(const Scene& scene) {
     return f;
 }
 
-namespace {
-
-const char* modelName(MaterialModel m) {
-    switch (m) {
-        case MaterialModel::Normal: return "normal";
-        case MaterialModel::Lambert: return "lambert";
-        case MaterialModel::Phong: return "opaque dielectric";
-        case MaterialModel::Glass: return "glass";
-        case MaterialModel::Mirror: return "mirror";
-    }
-    return "?";
-}
-
-constexpr MaterialModel kAllModels[] = {MaterialModel::Normal, MaterialModel::Lambert, MaterialModel::Phong,
-                                        MaterialModel::Glass, MaterialModel::Mirror};
-const char* kBackgroundNames[] = {"constant", "spherical map", "cube map"};
-
-std::vector<std::string> modelNames(const SceneFeatures& f) {
+std::vector<std::string> materialModelNames(std::uint32_t mask) {
     std::vector<std::string> names;
-    for (MaterialModel m : kAllModels)
-        if (f.uses(m)) names.emplace_back(modelName(m));
+    for (MaterialModel m : kMaterialModels)
+        if (mask >> std::uint32_t(m) & 1u) names.emplace_back(materialModelName(m));
     return names;
 }
-
-}  // namespace
 
 std::vector<std::string> SceneFeatures::describe() const {
     auto yesNo = [](bool b) { return b ? "yes" : "no"; };
     std::string models;
-    for (const std::string& name : modelNames(*this)) models += (models.empty() ? "" : ", ") + name;
+    for (const std::string& name : materialModelNames(materialModels)) models += (models.empty() ? "" : ", ") + name;
     return {
         "materials: " + (models.empty() ? std::string("none") : models),
         std::string("glass (refraction, medium stack): ") + yesNo(glass) + ", " + std::to_string(glassObjects) +
@@ -184,14 +171,14 @@ std::vector<std::string> SceneFeatures::describe() const {
         "pending-ray stack needed: " + std::to_string(rayStackDepth),
         std::string("shadow rays: ") + yesNo(shadowRays),
         std::string("textures: ") + yesNo(textures),
-        std::string("background: ") + kBackgroundNames[int(background)],
+        std::string("background: ") + backgroundKindName(background),
         "useful max_depth: " + std::to_string(usefulDepth) + (usefulDepth <= 1 ? " (primary rays only)" : ""),
     };
 }
 
 nlohmann::json toJson(const SceneFeatures& f) {
     return {
-        {"materials", modelNames(f)},
+        {"materials", materialModelNames(f.materialModels)},
         {"glass", f.glass},
         {"glass_objects", f.glassObjects},
         {"open_glass_objects", f.openGlassObjects},
@@ -202,7 +189,7 @@ nlohmann::json toJson(const SceneFeatures& f) {
         {"ray_stack_depth", f.rayStackDepth},
         {"shadow_rays", f.shadowRays},
         {"textures", f.textures},
-        {"background", kBackgroundNames[int(f.background)]},
+        {"background", backgroundKindName(f.background)},
         {"useful_max_depth", f.usefulDepth},
     };
 }

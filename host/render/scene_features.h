@@ -1,7 +1,7 @@
 // What a scene can need from the renderer ("simulate only the effects a scene calls for"):
 // found once at load, printed by `vitrum info`, recorded in --stats, used by both backends to skip
 // work the scene cannot need and by the Vulkan backend to specialize its kernel
-// (gpu/trace_specialization.h).
+// (render/trace_specialization.h).
 #pragma once
 
 #include <cstdint>
@@ -30,6 +30,9 @@ struct SceneFeatures {
     bool textures = false;               // some material samples map_Kd
     BackgroundKind background = BackgroundKind::Constant;
     std::uint32_t glassObjects = 0;
+    // Surfaces of different objects closer than this along a ray touch: kTouchingTolerance times
+    // the diagonal of the scene's box (both backends' touching probes use it).
+    double touchingDistance = 0.0;
     // Glass objects that are not closed, consistently wound meshes (some edge is not shared by
     // exactly two triangles in opposite directions): rays can leave them without entering, or
     // enter twice, so the medium stack can hold more than their nesting says.
@@ -56,5 +59,8 @@ SceneFeatures analyseScene(const Scene& scene);
 double sceneDiagonal(const std::vector<Triangle>& triangles);
 
 nlohmann::json toJson(const SceneFeatures& features);
+
+// The names of the models in a SceneFeatures::materialModels mask, in MaterialModel order.
+std::vector<std::string> materialModelNames(std::uint32_t mask);
 
 }  // namespace vitrum

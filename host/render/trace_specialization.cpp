@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scene/scene_names.h"
 #include "shared/gpu_types.h"
 
 namespace vitrum {
@@ -48,21 +49,16 @@ std::array<std::uint32_t, 10> TraceSpecialization::constants() const {
 
 namespace {
 
-std::string kindName(std::uint32_t kind, std::initializer_list<const char*> names) {
-    if (kind == TraceSpecialization::kAnyKind) return "any (run time)";
-    return kind < names.size() ? names.begin()[kind] : "?";
+// The name of a constant that is a kind (background, Fresnel model, filter), or "any".
+template <class Kind>
+std::string kindName(std::uint32_t kind, const char* (*name)(Kind)) {
+    return kind == TraceSpecialization::kAnyKind ? "any (run time)" : name(Kind(kind));
 }
 
 std::string modelList(std::uint32_t mask) {
     if (mask == 0xFFFFFFFFu) return "all";
-    const std::pair<MaterialModel, const char*> models[] = {{MaterialModel::Normal, "normal"},
-                                                            {MaterialModel::Lambert, "lambert"},
-                                                            {MaterialModel::Phong, "opaque dielectric"},
-                                                            {MaterialModel::Glass, "glass"},
-                                                            {MaterialModel::Mirror, "mirror"}};
     std::string list;
-    for (const auto& [model, name] : models)
-        if (mask >> std::uint32_t(model) & 1u) list += (list.empty() ? "" : ", ") + std::string(name);
+    for (const std::string& name : materialModelNames(mask)) list += (list.empty() ? "" : ", ") + name;
     return list.empty() ? "none" : list;
 }
 
@@ -77,9 +73,9 @@ std::vector<std::string> TraceSpecialization::describe() const {
         std::string("Beer-Lambert absorption: ") + onOff(absorption),
         std::string("touching probe: ") + onOff(touchingProbe),
         std::string("textures: ") + onOff(textures),
-        "background: " + kindName(backgroundKind, {"constant", "spherical map", "cube map"}),
-        "fresnel: " + kindName(fresnelModel, {"schlick", "exact", "schlick-exp2"}),
-        "filter: " + kindName(textureFilter, {"bilinear", "nearest"}),
+        "background: " + kindName(backgroundKind, backgroundKindName),
+        "fresnel: " + kindName(fresnelModel, fresnelModelName),
+        "filter: " + kindName(textureFilter, textureFilterName),
         "medium stack: " + std::to_string(mediumStackDepth) + " media a ray",
         "pending-ray stack: " + std::to_string(pendingRayCapacity) + " rays a pixel",
     };
@@ -93,9 +89,9 @@ nlohmann::json toJson(const TraceSpecialization& s) {
         {"absorption", s.absorption},
         {"touching_probe", s.touchingProbe},
         {"textures", s.textures},
-        {"background", kindName(s.backgroundKind, {"constant", "spherical map", "cube map"})},
-        {"fresnel", kindName(s.fresnelModel, {"schlick", "exact", "schlick-exp2"})},
-        {"filter", kindName(s.textureFilter, {"bilinear", "nearest"})},
+        {"background", kindName(s.backgroundKind, backgroundKindName)},
+        {"fresnel", kindName(s.fresnelModel, fresnelModelName)},
+        {"filter", kindName(s.textureFilter, textureFilterName)},
         {"medium_stack_depth", s.mediumStackDepth},
         {"pending_ray_capacity", s.pendingRayCapacity},
     };
