@@ -7,6 +7,7 @@
 #include <string>
 
 #include "common/error.h"
+#include "image/srgb.h"
 
 namespace vitrum {
 namespace {
@@ -37,14 +38,18 @@ ImageDiff diffImages(const Image& a, const Image& b) {
     double sumAbs = 0.0;
     std::size_t over1of255 = 0;
     std::size_t over005 = 0;
+    std::size_t srgb8Changed = 0;
     for (std::size_t i = 0; i < pixelCount; ++i) {
         double pixelMax = 0.0;
+        bool codeChanged = false;
         for (int c = 0; c < 3; ++c) {
             const double e = channelError(a.pixels[i][c], b.pixels[i][c]);
             sumSquared += e * e;
             sumAbs += e;
             pixelMax = std::max(pixelMax, e);
+            codeChanged = codeChanged || linearToSrgb8(a.pixels[i][c]) != linearToSrgb8(b.pixels[i][c]);
         }
+        if (codeChanged) ++srgb8Changed;
         diff.maxAbsError = std::max(diff.maxAbsError, pixelMax);
         if (pixelMax > 1.0 / 255.0) ++over1of255;
         if (pixelMax > 0.05) ++over005;
@@ -56,6 +61,7 @@ ImageDiff diffImages(const Image& a, const Image& b) {
     diff.meanAbsError = sumAbs / samples;
     diff.shareOver1of255 = double(over1of255) / double(pixelCount);
     diff.shareOver005 = double(over005) / double(pixelCount);
+    diff.shareSrgb8Changed = double(srgb8Changed) / double(pixelCount);
     return diff;
 }
 

@@ -12,6 +12,7 @@ struct ImageDiff {
     double meanAbsError = 0.0;
     double shareOver1of255 = 0.0;  // share of pixels whose largest channel error exceeds 1/255
     double shareOver005 = 0.0;     // ... exceeds 0.05
+    double shareSrgb8Changed = 0.0;  // share of pixels whose 8-bit sRGB PNG value differs in a channel
 };
 
 // Throws InputError when the sizes differ.

@@ -251,10 +251,7 @@ Image readSrgb(const fs::path& path) {
 bool writePng(const Image& image, const fs::path& file) {
     std::vector<unsigned char> data(image.pixels.size() * 3);
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-        for (int c = 0; c < 3; ++c) {
-            float v = std::clamp(finiteOrZero(image.pixels[i][c]), 0.0f, 1.0f);
-            data[i * 3 + c] = (unsigned char)std::lround(linearToSrgb(v) * 255.0f);
-        }
+        for (int c = 0; c < 3; ++c) data[i * 3 + c] = linearToSrgb8(image.pixels[i][c]);
     }
     return stbi_write_png(file.string().c_str(), int(image.width), int(image.height), 3, data.data(),
                           int(image.width) * 3) != 0;

@@ -1,7 +1,9 @@
 // The standard sRGB transfer curve (IEC 61966-2-1): exponent 2.4, thresholds 0.04045 / 0.0031308.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace vitrum {
 
@@ -11,6 +13,13 @@ inline float srgbToLinear(float c) {
 
 inline float linearToSrgb(float c) {
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+// The 8-bit sRGB code a linear value is written as in a PNG: clamped to [0, 1], rounded to
+// nearest; a non-finite value writes as 0.
+inline std::uint8_t linearToSrgb8(float c) {
+    const float v = std::isfinite(c) ? std::clamp(c, 0.0f, 1.0f) : 0.0f;
+    return std::uint8_t(std::lround(linearToSrgb(v) * 255.0f));
 }
 
 }  // namespace vitrum

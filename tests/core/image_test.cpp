@@ -296,6 +296,7 @@ TEST(ImageDiffTest, IdenticalImages) {
     EXPECT_EQ(d.meanAbsError, 0.0);
     EXPECT_EQ(d.shareOver1of255, 0.0);
     EXPECT_EQ(d.shareOver005, 0.0);
+    EXPECT_EQ(d.shareSrgb8Changed, 0.0);
 }
 
 TEST(ImageDiffTest, HandComputed2x1) {
@@ -316,6 +317,22 @@ TEST(ImageDiffTest, HandComputed2x1) {
     // Symmetric.
     const ImageDiff e = diffImages(b, a);
     EXPECT_DOUBLE_EQ(e.rmse, d.rmse);
+}
+
+// The share of pixels whose PNG changes: linear 0.5 is sRGB 0.7354, code 187.52 -> 188; a
+// change of 1e-4 keeps code 188, while 0.51 (sRGB 0.7416, code 189) does not.
+TEST(ImageDiffTest, ShareOfChangedSrgb8Pixels) {
+    Image a(4, 1);
+    for (auto& p : a.pixels) p = glm::vec3(0.5f);
+    Image b = a;
+    ASSERT_EQ(linearToSrgb8(0.5f), 188);
+    b.at(0, 0).g = 0.5001f;
+    EXPECT_EQ(diffImages(a, b).shareSrgb8Changed, 0.0);
+    b.at(1, 0).b = 0.51f;
+    ASSERT_EQ(linearToSrgb8(0.51f), 189);
+    b.at(2, 0).r = 2.0f;  // clamps to code 255
+    EXPECT_DOUBLE_EQ(diffImages(a, b).shareSrgb8Changed, 0.5);
+    EXPECT_DOUBLE_EQ(diffImages(b, a).shareSrgb8Changed, 0.5);
 }
 
 TEST(ImageDiffTest, NonFiniteNeverComparesWell) {
