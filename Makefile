@@ -5,7 +5,7 @@ JOBS ?= $(shell nproc)
 DEMO_SCENE ?= scenes/demo.json
 BENCH_RUNS ?= 5
 
-.PHONY: all deps configure build demo test clean fuzz fuzz-deps sanitize bench-specialization bench-bvh
+.PHONY: all deps configure build demo test clean fuzz fuzz-deps sanitize bench-specialization bench-performance study
 
 all: build
 
@@ -33,9 +33,17 @@ bench-specialization: build
 	VK_ICD_FILENAMES=$${VK_ICD_FILENAMES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json} \
 	  $(BUILD)/bench/vitrum_bench_specialization docs/specialization.md $(BENCH_RUNS)
 
-bench-bvh: build
+bench-performance: build
 	$(BUILD)/bench/vitrum_bench_bvh $(BENCH_RUNS) > docs/performance.md.partial
+	VK_ICD_FILENAMES=$${VK_ICD_FILENAMES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json} \
+	  $(BUILD)/bench/vitrum_bench_primary_rays $(BENCH_RUNS) >> docs/performance.md.partial
 	mv docs/performance.md.partial docs/performance.md
+
+# The accuracy study: docs/accuracy-vs-time.md and docs/study/ (about 20 minutes on 2 cores).
+STUDY_RUNS ?= 3
+study: build
+	VK_ICD_FILENAMES=$${VK_ICD_FILENAMES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json} \
+	  $(BUILD)/bench/vitrum_study docs --runs $(STUDY_RUNS)
 
 # Not part of the quick start (docs/testing.md): libFuzzer on the scene and image loaders for
 # FUZZ_SECONDS per target, in its own clang build; and the whole suite under ASan + UBSan.

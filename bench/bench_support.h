@@ -1,8 +1,9 @@
-// What the benchmark programs share: the median, the machine and the date for their reports,
+// What the benchmark programs share: the median, number formatting, the machine and the date for their reports,
 // and a main() that turns an exception into a message and exit code 1.
 #pragma once
 
 #include <algorithm>
+#include <cstdio>
 #include <ctime>
 #include <exception>
 #include <fstream>
@@ -29,6 +30,13 @@ inline std::string machine() {
             break;
         }
     return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads";
+}
+
+// v with `digits` decimals, for the reports' tables.
+inline std::string fixed(double v, int digits) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*f", digits, v);
+    return buffer;
 }
 
 inline std::string today() {

@@ -79,12 +79,6 @@ Measured measure(const Scene& scene, const Bvh& bvh, bool specialize, int runs, 
     return m;
 }
 
-std::string fixed(double v, int digits) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.*f", digits, v);
-    return buffer;
-}
-
 int run(int argc, char** argv) {
     if (argc < 2) {
         std::cerr << "usage: vitrum_bench_specialization OUT.md [RUNS] [WIDTH HEIGHT]\n";
@@ -112,18 +106,18 @@ int run(int argc, char** argv) {
             general.image.pixels.size() == special.image.pixels.size() &&
             std::memcmp(general.image.pixels.data(), special.image.pixels.data(),
                         general.image.pixels.size() * sizeof(glm::vec3)) == 0;
-        std::cerr << " " << fixed(general.render / special.render, 2) << "x\n";
+        std::cerr << " " << bench::fixed(general.render / special.render, 2) << "x\n";
         const TraceSpecialization& k = *special.stats.kernel;
         const std::string name = fs::path(file).stem().string();
-        rows << "| " << name << " | " << fixed(general.render, 3) << " | " << fixed(special.render, 3) << " | **"
-             << fixed(general.render / special.render, 2) << "x** | " << fixed(general.coldCompile, 2) << " | "
-             << fixed(special.coldCompile, 2) << " | " << fixed(general.warmCompile, 3) << " | "
-             << fixed(special.warmCompile, 3) << " | " << (identical ? "yes" : "**no**") << " |\n";
+        rows << "| " << name << " | " << bench::fixed(general.render, 3) << " | " << bench::fixed(special.render, 3) << " | **"
+             << bench::fixed(general.render / special.render, 2) << "x** | " << bench::fixed(general.coldCompile, 2) << " | "
+             << bench::fixed(special.coldCompile, 2) << " | " << bench::fixed(general.warmCompile, 3) << " | "
+             << bench::fixed(special.warmCompile, 3) << " | " << (identical ? "yes" : "**no**") << " |\n";
         const double tilePixels = double(std::min(128u, width)) * std::min(128u, height);
         work << "| " << name << " | " << special.stats.rays.total() << " | " << k.mediumStackDepth << " | "
              << k.pendingRayCapacity << " | " << general.stats.stateBytesPerPixel << " -> "
              << special.stats.stateBytesPerPixel << " | "
-             << fixed(double(general.stats.stateBytesPerPixel - special.stats.stateBytesPerPixel) * tilePixels /
+             << bench::fixed(double(general.stats.stateBytesPerPixel - special.stats.stateBytesPerPixel) * tilePixels /
                           (1024.0 * 1024.0), 1)
              << " | " << general.stats.touchingProbes - special.stats.touchingProbes << " | "
              << (k.shadowRays ? "" : "shadow rays, ") << (k.absorption ? "" : "absorption, ")

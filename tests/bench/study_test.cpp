@@ -1,0 +1,87 @@
+// The accuracy study (bench/accuracy_study.cpp): its Pareto front, and a quick run end to end
+// whose report must hold what physics says about the settings it measured.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "study/pareto.h"
+
+namespace vitrum::study {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(Pareto, KeepsThePointsNothingBeatsOnBothTimeAndError) {
+    //            0: fast, bad   1: dominated by 0   2: slower, better   3: dominated by 2   4: slowest, best
+    const std::vector<TimeError> points = {{1.0, 0.5}, {2.0, 0.6}, {3.0, 0.1}, {3.5, 0.1}, {9.0, 0.01}};
+    EXPECT_EQ(paretoFront(points), (std::vector<std::size_t>{0, 2, 4}));
+}
+
+TEST(Pareto, EqualTimesKeepOnlyTheSmallerErrorAndEmptyInputGivesNoFront) {
+    EXPECT_EQ(paretoFront({{2.0, 0.3}, {2.0, 0.2}, {1.0, 0.9}}), (std::vector<std::size_t>{2, 1}));
+    EXPECT_TRUE(paretoFront({}).empty());
+}
+
+std::string read(const fs::path& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// The cells of the report's table row that starts with `label`.
+std::vector<std::string> rowCells(const std::string& report, const std::string& label) {
+    std::istringstream lines(report);
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("| " + label + " |", 0) != 0 && line.rfind("| " + label + " [front] |", 0) != 0) continue;
+        std::vector<std::string> cells;
+        std::istringstream row(line.substr(2));
+        for (std::string cell; std::getline(row, cell, '|');) cells.push_back(cell.substr(1, cell.size() - 2));
+        return cells;
+    }
+    return {};
+}
+
+TEST(Study, QuickRunWritesTheReportItsHeatMapsAndPlots) {
+    const fs::path out = fs::temp_directory_path() / ("vitrum-study-test-" + std::to_string(::getpid()));
+    fs::remove_all(out);
+    const std::string command = std::string(VITRUM_STUDY_BINARY) + " " + out.string() +
+                                " --quick --runs 1 --size 40x30 scenes/diamond.json 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    const std::string report = read(out / "accuracy-vs-time.md");
+    ASSERT_FALSE(report.empty());
+    EXPECT_NE(report.find("## diamond"), std::string::npos);
+    // Every linked heat map and plot exists; nothing partial is left.
+    const std::regex link(R"(\((study/[^)]+\.(png|svg))\))");
+    int links = 0;
+    for (auto it = std::sregex_iterator(report.begin(), report.end(), link); it != std::sregex_iterator(); ++it, ++links)
+        EXPECT_TRUE(fs::exists(out / (*it)[1].str())) << (*it)[1].str();
+    EXPECT_GE(links, 12);  // the plot, two truths, a heat map per setting
+    EXPECT_FALSE(fs::exists(out / "study.partial"));
+    EXPECT_NE(read(out / "study" / "diamond.svg").find("Pareto front"), std::string::npos);
+
+    // Columns: setting, backend, time, vs default, compile, rays, Mrays/s, RMSE, PSNR, max, ...
+    const auto rmse = [&](const std::string& label) {
+        const std::vector<std::string> cells = rowCells(report, label);
+        EXPECT_GT(cells.size(), 8u) << label;
+        return cells.size() > 8 ? std::stod(cells[7]) : 1.0;
+    };
+    // The GPU in float with the truth's own settings is the truth up to float rounding, which on
+    // this TIR-heavy diamond is 2e-4 RMSE at 128x96 (the study's figure).
+    EXPECT_LT(rmse("GPU, truth settings"), 2e-3);
+    // At IOR 2.42 Schlick is measurably wrong: at least twice float's rounding, and worse than it.
+    EXPECT_GT(rmse("GPU, truth settings, Schlick"), 2.0 * rmse("GPU, truth settings"));
+    // Depth 1 sees no reflection or refraction at all: far worse than depth 10.
+    EXPECT_GT(rmse("depth 1"), 10.0 * rmse("**depth 10 (default)**"));
+    fs::remove_all(out);
+}
+
+}  // namespace
+}  // namespace vitrum::study
