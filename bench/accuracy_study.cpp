@@ -51,8 +51,8 @@ const char* kDefaultScenes[] = {
 // Shorter ones are repeated until they have filled about kTimedSeconds, up to kMaxRuns times:
 // lavapipe's run-to-run noise on a 2-core machine is 10-30% for a render of 0.1 s.
 constexpr double kTimeOnceSeconds = 3.0;
-constexpr double kTimedSeconds = 1.5;
-constexpr int kMaxRuns = 9;
+constexpr double kTimedSeconds = 1.2;
+constexpr int kMaxRuns = 7;
 constexpr float kHeatMapFullScale = 0.05f;
 
 struct Options {

@@ -1,5 +1,5 @@
-// What the benchmark programs share: the median, number formatting, the machine and the date for their reports,
-// and a main() that turns an exception into a message and exit code 1.
+// What the benchmark programs share: the median, number formatting, the machine and the date
+// for their reports, and a main() that turns an exception into a message and exit code 1.
 #pragma once
 
 #include <algorithm>
