@@ -11,7 +11,6 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
-#include <map>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -274,7 +273,7 @@ std::string limitsHit(const RenderStats& s) {
     add("medium stack", s.limits.mediumStackOverflow);
     add("traversal stack", s.limits.traversalStackOverflow);
     add("loop limit", s.limits.loopLimitSuspected);
-    return hit.empty() ? "" : hit;
+    return hit;
 }
 
 std::string backendName(Backend b) { return b == Backend::Gpu ? "GPU float" : b == Backend::CpuFloat ? "CPU float" : "CPU double"; }

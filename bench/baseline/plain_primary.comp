@@ -25,7 +25,7 @@ struct Camera {
     vec4 origin;      // xyz; w: image width (float)
     vec4 lowerLeft;   // xyz: direction to the top-left pixel's corner; w: image height
     vec4 right;       // xyz: one pixel to the right
-    vec4 down;        // xyz: one pixel down; w: root link (an inner node 0, or ~0 for a leaf-only tree)
+    vec4 down;        // xyz: one pixel down
     ivec4 rootLeaf;   // x: 1 when the whole tree is one leaf, y: its triangle count
 };
 

@@ -100,10 +100,11 @@ inline std::vector<StudySetting> studySettings(bool quick) {
         r.fresnel = c.fresnel;
         r.minWeight = c.minWeight;
         char label[96];
-        std::snprintf(label, sizeof label, "%u spp, depth %u, %s%s", c.spp, c.depth,
-                      c.fresnel == FresnelModel::Exact ? "exact" : "schlick",
-                      c.minWeight > 0 ? (", min weight " + std::to_string(c.minWeight).substr(0, 4)).c_str() : "");
-        add("combined", label, r);
+        std::snprintf(label, sizeof label, "%u spp, depth %u, %s", c.spp, c.depth,
+                      c.fresnel == FresnelModel::Exact ? "exact" : "schlick");
+        char cut[48] = "";
+        if (c.minWeight > 0) std::snprintf(cut, sizeof cut, ", min weight %g", double(c.minWeight));
+        add("combined", std::string(label) + cut, r);
     }
     // The truth's own settings on the GPU: what float precision alone leaves.
     add("truth settings", "GPU, truth settings", truthSettings(1, kTruthDepth, kTruthMinWeight));

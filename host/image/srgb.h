@@ -15,11 +15,10 @@ inline float linearToSrgb(float c) {
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
-// The 8-bit sRGB code a linear value is written as in a PNG: clamped to [0, 1], rounded to
-// nearest; a non-finite value writes as 0.
-inline std::uint8_t linearToSrgb8(float c) {
-    const float v = std::isfinite(c) ? std::clamp(c, 0.0f, 1.0f) : 0.0f;
-    return std::uint8_t(std::lround(linearToSrgb(v) * 255.0f));
-}
+// The sRGB value a linear one is shown as: clamped to [0, 1] first, a non-finite value as 0.
+inline float displayedSrgb(float c) { return linearToSrgb(std::isfinite(c) ? std::clamp(c, 0.0f, 1.0f) : 0.0f); }
+
+// The 8-bit sRGB code a linear value is written as in a PNG: displayedSrgb rounded to nearest.
+inline std::uint8_t linearToSrgb8(float c) { return std::uint8_t(std::lround(displayedSrgb(c) * 255.0f)); }
 
 }  // namespace vitrum

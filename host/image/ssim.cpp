@@ -47,8 +47,7 @@ std::vector<double> blur(const std::vector<double>& values, int width, int heigh
 }  // namespace
 
 double srgbLuma(const glm::vec3& linear) {
-    auto encoded = [](float c) { return double(linearToSrgb(std::isfinite(c) ? std::clamp(c, 0.0f, 1.0f) : 0.0f)); };
-    return 0.2126 * encoded(linear.r) + 0.7152 * encoded(linear.g) + 0.0722 * encoded(linear.b);
+    return 0.2126 * displayedSrgb(linear.r) + 0.7152 * displayedSrgb(linear.g) + 0.0722 * displayedSrgb(linear.b);
 }
 
 std::vector<double> ssimMap(const Image& a, const Image& b) {
