@@ -16,5 +16,6 @@ layout(std430, set = 0, binding = 9) writeonly buffer Pixels { vec4 pixels[]; };
 layout(std430, set = 0, binding = 10) buffer States { TraceState states[]; };
 layout(std430, set = 0, binding = 11) buffer Stats { uint stats[]; };
 layout(std430, set = 0, binding = 12) buffer PendingRays { PendingRay pendingRays[]; };  // kPendingRayCapacity a pixel
+layout(std430, set = 0, binding = 13) buffer TraversalStacks { uint traversalStacks[]; };  // kTraversalStackSize a pixel
 
 #endif

@@ -1,6 +1,6 @@
-// Ray/triangle and ray/box tests and a resumable, one-node-per-step BVH traversal over the
-// flattened nodes of shared/gpu_types.h. The traversal's state lives in the global `st` (see
-// trace.comp) so that a dispatch can stop after any step and the next one resume it.
+// Ray/triangle and ray/box tests and a resumable BVH traversal over the flattened nodes of
+// shared/gpu_types.h. The traversal's state is kept in the global `st` (see trace.comp) so that a
+// dispatch can stop after any step and the next one resume it.
 #ifndef VITRUM_BVH_GLSL
 #define VITRUM_BVH_GLSL
 
@@ -65,62 +65,133 @@ const uint kTraverseClosest = 0u;  // the closest hit
 const uint kTraverseAny = 1u;      // any hit (shadow rays)
 const uint kTraverseTouching = 2u; // every glass surface of another object (see onTouchingHit)
 
-// Starts a traversal of the ray origin + t direction, tMin < t < tMax.
+// A traversal stack entry is a node whose box the ray entered: an interior node's index, or a
+// leaf's triangle range, so that popping a leaf reads no node. Triangle indices stay below 2^27
+// (the 128 MiB vertex buffer holds under 2^22 triangles).
+const uint kLeafEntryFlag = 0x80000000u;
+const uint kNoEntry = 0xFFFFFFFFu;
+
+// A fresh traversal: its stack holds only the root, which is not in the stack buffer.
+const uint kFreshTraversal = 0xFFFFFFFFu;
+
+uint stackEntry(uint index, BvhNode node) {
+    uint meta = floatBitsToUint(node.boundsMax.w);
+    uint link = floatBitsToUint(node.boundsMin.w);
+    return (meta & kInteriorNodeFlag) != 0u ? index : kLeafEntryFlag | (link << 4) | meta;
+}
+
+// Starts a traversal of the ray origin + t direction, tMin < t < tMax. The root is entered
+// without testing its box: its children's boxes are tested.
 void beginTraversal(vec3 origin, vec3 direction, float tMin, float tMax) {
     st.traceOrigin = vec4(origin, tMin);
     st.traceDirection = vec4(direction, tMax);
-    st.stack[0] = 0u;
-    st.control.w = 1u;
+    st.control.w = kFreshTraversal;
     st.traversal.xyz = uvec3(0u, 0u, kNoTriangle);
 }
 
-// One step of the traversal: one triangle test or one node visit. Returns true when it is over:
-// the closest hit (or, for kTraverseAny, some hit) is in st.traversal.z, its t in
-// st.traceDirection.w and its barycentrics in st.hitUv.zw. kTraverseTouching keeps tMax and hands
-// every hit to onTouchingHit instead.
-bool traversalStep(uint mode) {
+// Runs the traversal begun by beginTraversal for at most `budget - steps` steps (each loop
+// iteration is one: a triangle test, an interior node whose two children's boxes it tests, in
+// the manner of Aila and Laine 2009, or taking a leaf off the stack). Returns true when it is over: the closest hit (or, for kTraverseAny, some hit)
+// is in st.traversal.z, its t in st.traceDirection.w and its barycentrics in st.hitUv.zw.
+// kTraverseTouching keeps tMax and hands every hit to onTouchingHit instead. Returns false when
+// the budget ran out first; the state is then back in `st` and a later call resumes it.
+//
+// The ray and the cursor live in locals while it runs; the stack is read and written in place in
+// traversalStacks[stackBase ..]. Nodes are
+// visited depth first, near child (by the split axis) first, as host/bvh/bvh_traversal.cpp does,
+// so both find the same closest triangle, ties included.
+bool traverse(uint mode, inout uint steps, uint budget) {
     vec3 origin = st.traceOrigin.xyz;
+    float tMin = st.traceOrigin.w;
     vec3 direction = st.traceDirection.xyz;
-    if (st.traversal.x < st.traversal.y) {
-        uint triangle = st.traversal.x;
-        st.traversal.x += 1u;
-        TriangleVertices tri = vertices[triangle];
-        vec3 hit = intersectTriangle(tri, origin, direction);
-        if (hit.x > st.traceOrigin.w && hit.x < st.traceDirection.w) {
-            if (kTouchingProbe && mode == kTraverseTouching) {
-                onTouchingHit(tri, hit.x);
-                return false;
+    float tMax = st.traceDirection.w;
+    vec3 inverseDirection = 1.0 / direction;
+    uint cursor = st.traversal.x;
+    uint leafEnd = st.traversal.y;
+    uint closest = st.traversal.z;
+    vec2 barycentrics = st.hitUv.zw;
+    uint top = st.control.w;
+    uint current = kNoEntry;  // the entry to visit next, taken off the stack or kept from a visit
+    if (top == kFreshTraversal) {
+        top = 0u;
+        current = stackEntry(0u, nodes[0]);
+    }
+    bool over = false;
+    // Aila and Laine's "while-while": inner nodes until every lane of the SIMD group holds a leaf
+    // (or is done), then that leaf's triangles, so that one loop iteration is one kind of work.
+    while (!over && steps < budget) {
+        steps += 1u;
+        while (cursor >= leafEnd && steps < budget) {
+            steps += 1u;
+            if (current == kNoEntry) {
+                if (top == 0u) {
+                    over = true;
+                    break;
+                }
+                top -= 1u;
+                current = traversalStacks[stackBase + top];
             }
-            st.traceDirection.w = hit.x;
-            st.traversal.z = triangle;
-            st.hitUv.zw = hit.yz;
-            if (kShadowRays && mode == kTraverseAny) return true;
+            if ((current & kLeafEntryFlag) != 0u) {
+                cursor = (current & ~kLeafEntryFlag) >> 4;
+                leafEnd = cursor + (current & 15u);
+                current = kNoEntry;
+                break;
+            }
+            uint meta = floatBitsToUint(nodes[current].boundsMax.w);  // the children's boxes are all we need
+            uint second = floatBitsToUint(nodes[current].boundsMin.w);
+            // Near child (on the ray's side of the split) and far child.
+            bool negative = direction[meta & 3u] < 0.0;
+            uint nearIndex = negative ? second : current + 1u;
+            uint farIndex = negative ? current + 1u : second;
+            BvhNode nearNode = nodes[nearIndex];
+            BvhNode farNode = nodes[farIndex];
+            gNodeVisits += 2u;
+            bool hitNear = hitsBox(nearNode.boundsMin.xyz, nearNode.boundsMax.xyz, origin, inverseDirection, tMax);
+            bool hitFar = hitsBox(farNode.boundsMin.xyz, farNode.boundsMax.xyz, origin, inverseDirection, tMax);
+            current = hitNear ? stackEntry(nearIndex, nearNode) : kNoEntry;
+            if (hitFar) {
+                uint farEntry = stackEntry(farIndex, farNode);
+                if (!hitNear) {
+                    current = farEntry;
+                } else if (top + 2u > kTraversalStackSize) {
+                    gTraversalOverflows += 1u;  // the far child is dropped, never silently
+                } else {
+                    traversalStacks[stackBase + top] = farEntry;
+                    top += 1u;
+                }
+            }
         }
-        return false;
+        while (cursor < leafEnd && steps < budget) {
+            steps += 1u;
+            uint triangle = cursor;
+            cursor += 1u;
+            TriangleVertices tri = vertices[triangle];
+            vec3 hit = intersectTriangle(tri, origin, direction);
+            if (hit.x > tMin && hit.x < tMax) {
+                if (kTouchingProbe && mode == kTraverseTouching) {
+                    onTouchingHit(tri, hit.x);
+                } else {
+                    tMax = hit.x;
+                    closest = triangle;
+                    barycentrics = hit.yz;
+                    if (kShadowRays && mode == kTraverseAny) {
+                        over = true;
+                        break;
+                    }
+                }
+            }
+        }
     }
-    if (st.control.w == 0u) return true;
-    st.control.w -= 1u;
-    uint nodeIndex = st.stack[st.control.w];
-    BvhNode node = nodes[nodeIndex];
-    gNodeVisits += 1u;
-    if (!hitsBox(node.boundsMin.xyz, node.boundsMax.xyz, origin, 1.0 / direction, st.traceDirection.w)) return false;
-    uint meta = floatBitsToUint(node.boundsMax.w);
-    uint link = floatBitsToUint(node.boundsMin.w);
-    if ((meta & kInteriorNodeFlag) == 0u) {
-        st.traversal.x = link;
-        st.traversal.y = link + meta;
-        return false;
+    // Suspended: the entry in hand goes back on the stack (pushes leave it a free slot).
+    if (!over && current != kNoEntry) {
+        traversalStacks[stackBase + top] = current;
+        top += 1u;
     }
-    if (st.control.w + 2u > kTraversalStackSize) {
-        gTraversalOverflows += 1u;
-        return false;
-    }
-    // Visit the child on the ray's near side of the split first: push it last.
-    bool negative = direction[meta & 3u] < 0.0;
-    st.stack[st.control.w] = negative ? nodeIndex + 1u : link;
-    st.stack[st.control.w + 1u] = negative ? link : nodeIndex + 1u;
-    st.control.w += 2u;
-    return false;
+    st.traceDirection.w = tMax;
+    st.traversal.xyz = uvec3(cursor, leafEnd, closest);
+    st.hitUv.zw = barycentrics;
+    st.control.w = top;
+    return over;
 }
 
 #endif

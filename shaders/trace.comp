@@ -2,8 +2,8 @@
 // The ray tree of docs/render-model.md, one pixel per invocation, for one tile of the image.
 //
 // lavapipe silently ends a shader's loops after 65,535 iterations. So every loop iteration of
-// this kernel is one small counted step of a state machine (one BVH node, one triangle, or one
-// shading decision). A dispatch runs at most `params.counts.w` steps per pixel;
+// this kernel is one small counted step (one BVH node, one leaf, one triangle, or one round of
+// shading, see main). A dispatch runs at most `params.counts.w` steps per pixel;
 // a pixel that is not done keeps its whole state (its ray tree included) in `states[]`, and the
 // host dispatches again until every pixel of the tile is done. Nothing recurses.
 #extension GL_GOOGLE_include_directive : require
@@ -27,6 +27,8 @@ uint gTouchingProbes = 0u;
 
 // This pixel's pending rays: pendingRays[pendingBase .. pendingBase + kPendingRayCapacity).
 uint pendingBase = 0u;
+// This pixel's BVH traversal stack: traversalStacks[stackBase .. stackBase + kTraversalStackSize).
+uint stackBase = 0u;
 
 // A surface the touching probe found: a glass surface of another object than the one hit, at
 // (nearly) the same point. Recorded once per object, at most 3.
@@ -404,19 +406,10 @@ void nextRay() {
     st.control.x = kPhaseTrace;
 }
 
-// One shading step: everything but traversal.
-void shadingStep() {
-    uint phase = st.control.x;
-    if (phase == kPhaseNextLight) {
-        nextLight();
-    } else if (spawnsRays() && phase == kPhaseScatter) {
-        scatter();
-    } else if (phase == kPhaseNextRay) {
-        nextRay();
-    } else if (phase == kPhaseStartSample) {
-        if (floatBitsToUint(st.accumulated.w) >= params.image.z) st.control.x = kPhaseDone;
-        else startPrimaryRay();
-    }
+// The next sample's primary ray, or the end of the pixel.
+void startSample() {
+    if (floatBitsToUint(st.accumulated.w) >= params.image.z) st.control.x = kPhaseDone;
+    else startPrimaryRay();  // begins a traversal, or (max_depth 0) goes to kPhaseNextRay
 }
 
 void addStat(uint index, uint value) {
@@ -430,6 +423,7 @@ void main() {
         return;
     uint slot = local.y * params.tile.z + local.x;
     pendingBase = slot * kPendingRayCapacity;
+    stackBase = slot * kTraversalStackSize;
     if (params.pass.x == 1u) {
         st.accumulated = vec4(0.0, 0.0, 0.0, uintBitsToFloat(0u));
         st.control = uvec4(kPhaseStartSample, 0u, 0u, 0u);
@@ -440,11 +434,15 @@ void main() {
     }
 
     // lavapipe runs 8 invocations in lock step and executes both sides of every branch under a
-    // mask, so a loop's cost per iteration is its whole body. Hence two loops: a small inner one
-    // that only walks the BVH, inside an outer one that shades. Both count against one budget of
-    // steps, far below lavapipe's 65,535 iterations over all loops.
+    // mask, so a loop iteration costs its whole body, whatever phase each pixel is in. One
+    // iteration therefore runs one traversal (a loop of its own that walks only the BVH) and then
+    // takes the pixel through every shading phase that is due, in the order they follow each
+    // other, up to the start of the next traversal: each ray of the tree costs one iteration of
+    // shading code, not one per phase. Every loop counts against one budget of steps, far below
+    // lavapipe's 65,535 iterations.
     uint budget = params.counts.w;
     uint steps = 0u;
+    if (st.control.x == kPhaseStartSample) startSample();
     while (st.control.x != kPhaseDone && steps < budget) {
         steps += 1u;
         uint phase = st.control.x;
@@ -452,18 +450,15 @@ void main() {
             uint mode = kShadowRays && phase == kPhaseShadow
                             ? kTraverseAny
                             : (kTouchingProbe && phase == kPhaseTouching ? kTraverseTouching : kTraverseClosest);
-            bool over = false;
-            while (!over && steps < budget) {
-                steps += 1u;
-                over = traversalStep(mode);
-            }
-            if (!over) break;
+            if (!traverse(mode, steps, budget)) break;
             if (phase == kPhaseShadow) finishShadow();
             else if (phase == kPhaseTrace) finishTrace();
             else st.control.x = kPhaseScatter;
-        } else {
-            shadingStep();
         }
+        if (st.control.x == kPhaseNextLight) nextLight();  // may begin a shadow traversal
+        if (spawnsRays() && st.control.x == kPhaseScatter) scatter();
+        if (st.control.x == kPhaseNextRay) nextRay();  // begins a traversal or ends the sample
+        if (st.control.x == kPhaseStartSample) startSample();
     }
 
     st.traversal.w += steps;

@@ -206,6 +206,7 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         {"image", VkDeviceSize(scene.camera.width) * scene.camera.height * sizeof(glm::vec4)},
         {"trace state of one tile", tilePixels * sizeof(gpu::TraceState)},
         {"pending rays of one tile", tilePixels * gpu::kRayStackSize * sizeof(gpu::PendingRay)},
+        {"traversal stacks of one tile", tilePixels * gpu::kTraversalStackSize * sizeof(std::uint32_t)},
     };
     const VkDeviceSize limit = storageBufferLimit(device).bytes;
     VkDeviceSize total = 0;

@@ -15,6 +15,6 @@ static_assert(sizeof(RenderParams) == 192);
 
 namespace vitrum::gpu {
 static_assert(sizeof(PendingRay) == 64);
-static_assert(sizeof(TraceState) == 64 + 12 * 16 + kTraversalStackSize * 4);
+static_assert(sizeof(TraceState) == 64 + 12 * 16);
 static_assert(kMaxMediumDepth == 4, "trace.comp's medium stack code is unrolled for 4 entries");
 }  // namespace vitrum::gpu

@@ -23,6 +23,7 @@ enum TraceBinding : std::uint32_t {
     kBindingStates,
     kBindingStats,
     kBindingPendingRays,
+    kBindingTraversalStacks,
     kTraceBindingCount,
 };
 

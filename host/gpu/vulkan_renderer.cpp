@@ -82,7 +82,10 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
                      "trace state of one tile");
     GpuBuffer pendingRays(device, std::max<VkDeviceSize>(tilePixels * kernel.pendingRayCapacity * sizeof(gpu::PendingRay), 16),
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "pending rays of one tile");
-    stats.stateBytesPerPixel = sizeof(gpu::TraceState) + kernel.pendingRayCapacity * sizeof(gpu::PendingRay);
+    GpuBuffer traversalStacks(device, tilePixels * gpu::kTraversalStackSize * sizeof(std::uint32_t),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "traversal stacks of one tile");
+    stats.stateBytesPerPixel = sizeof(gpu::TraceState) + kernel.pendingRayCapacity * sizeof(gpu::PendingRay) +
+                               gpu::kTraversalStackSize * sizeof(std::uint32_t);
     GpuBuffer counters(device, gpu::kStatCount * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                        "statistics");
     stats.addPhase("upload", secondsSince(start));
@@ -91,7 +94,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     ComputePipeline pipeline = makeTracePipeline(device, kernel);
     std::array<const GpuBuffer*, kTraceBindingCount> bound{
         &params, &nodes, &vertices, &shading, &materials, &lights, &textures,
-        &texels, &objectMaterials, &pixels, &states, &counters, &pendingRays};
+        &texels, &objectMaterials, &pixels, &states, &counters, &pendingRays, &traversalStacks};
     pipeline.bind(bound);
     stats.addPhase("pipeline", secondsSince(start));
 

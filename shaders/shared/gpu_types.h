@@ -140,7 +140,10 @@ struct PendingRay {
 
 // The pending rays of a pixel are not part of its TraceState: they live in their own buffer,
 // `capacity` entries a pixel (the specialized kernel's kPendingRayCapacity, sized to what the
-// scene can reach), read and written in place, so suspending a pixel never copies them.
+// scene can reach), read and written in place, so suspending a pixel never copies them. So does
+// its BVH traversal stack (kTraversalStackSize uints a pixel): on lavapipe every load and store
+// of a storage buffer costs a loop over the 8 lanes, on every path, taken or not, so copying
+// state that need not move is what makes a kernel slow.
 struct TraceState {
     PendingRay ray;                      // the ray being traced (or shaded)
     vec4 traceOrigin;                    // the ray of the current traversal; .w = tMin
@@ -151,12 +154,11 @@ struct TraceState {
     vec4 hitUv;                          // .xy = texture coordinates, .zw = barycentrics
     vec4 sampleColour;                   // colour of the current sample so far
     vec4 accumulated;                    // sum of finished samples; .w = samples done (uint bits)
-    uvec4 control;                       // phase, pending rays, current light, traversal stack size
+    uvec4 control;                       // phase, pending rays, current light, traversal stack entries
     uvec4 traversal;                     // leaf cursor, leaf end, closest triangle, pixel's steps
     uvec4 touching;                      // other objects' glass surfaces at the hit: object | entering
                                          // << 31, up to 3; .w = how many
     vec4 probe;                          // .x = farthest touching surface's t
-    uint stack[kTraversalStackSize];     // BVH nodes still to visit
 };
 
 // ---- Render statistics (storage buffer of uints, one counter each) -----------------------------

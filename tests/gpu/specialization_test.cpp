@@ -98,8 +98,10 @@ TEST(Specialization, SeparateGlassSpheresRunNoTouchingProbeInTheSpecializedKerne
     EXPECT_EQ(specialized.kernel->pendingRayCapacity, 10u);
     EXPECT_EQ(specialized.maxMediumDepth, 1u);
     EXPECT_EQ(specialized.limits.mediumStackOverflow, 0u);
-    EXPECT_EQ(specialized.stateBytesPerPixel, sizeof(gpu::TraceState) + 10 * sizeof(gpu::PendingRay));
-    EXPECT_EQ(general.stateBytesPerPixel, sizeof(gpu::TraceState) + 16 * sizeof(gpu::PendingRay));
+    EXPECT_EQ(specialized.stateBytesPerPixel, sizeof(gpu::TraceState) + 10 * sizeof(gpu::PendingRay) +
+                                             gpu::kTraversalStackSize * sizeof(std::uint32_t));
+    EXPECT_EQ(general.stateBytesPerPixel, sizeof(gpu::TraceState) + 16 * sizeof(gpu::PendingRay) +
+                                             gpu::kTraversalStackSize * sizeof(std::uint32_t));
 }
 
 TEST(Specialization, DeepTreeFitsTheSizedPendingStack) {
