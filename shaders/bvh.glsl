@@ -89,6 +89,34 @@ void beginTraversal(vec3 origin, vec3 direction, float tMin, float tMax) {
     st.traversal.xyz = uvec3(0u, 0u, kNoTriangle);
 }
 
+// One interior node of a traversal: tests both children's boxes, keeps the nearer hit child in
+// `current` (kNoEntry when neither is hit) and pushes the farther one when both are.
+void visitInteriorNode(inout uint current, inout uint top, vec3 origin, vec3 direction, vec3 inverseDirection,
+                       float tMax) {
+    uint meta = floatBitsToUint(nodes[current].boundsMax.w);  // the children's boxes are all we need
+    uint second = floatBitsToUint(nodes[current].boundsMin.w);
+    // Near child (on the ray's side of the split) and far child.
+    bool negative = direction[meta & 3u] < 0.0;
+    uint nearIndex = negative ? second : current + 1u;
+    uint farIndex = negative ? current + 1u : second;
+    BvhNode nearNode = nodes[nearIndex];
+    BvhNode farNode = nodes[farIndex];
+    gNodeVisits += 2u;
+    bool hitNear = hitsBox(nearNode.boundsMin.xyz, nearNode.boundsMax.xyz, origin, inverseDirection, tMax);
+    bool hitFar = hitsBox(farNode.boundsMin.xyz, farNode.boundsMax.xyz, origin, inverseDirection, tMax);
+    current = hitNear ? stackEntry(nearIndex, nearNode) : kNoEntry;
+    if (!hitFar) return;
+    uint farEntry = stackEntry(farIndex, farNode);
+    if (!hitNear) {
+        current = farEntry;
+    } else if (top + 2u > kTraversalStackSize) {
+        gTraversalOverflows += 1u;  // the far child is dropped, never silently
+    } else {
+        traversalStacks[stackBase + top] = farEntry;
+        top += 1u;
+    }
+}
+
 // Runs the traversal begun by beginTraversal for at most `budget - steps` steps (each loop
 // iteration is one: a triangle test, an interior node whose two children's boxes it tests, in
 // the manner of Aila and Laine 2009, or taking a leaf off the stack). Returns true when it is over: the closest hit (or, for kTraverseAny, some hit)
@@ -131,34 +159,13 @@ bool traverse(uint mode, inout uint steps, uint budget) {
                 top -= 1u;
                 current = traversalStacks[stackBase + top];
             }
-            if ((current & kLeafEntryFlag) != 0u) {
+            if ((current & kLeafEntryFlag) == 0u) visitInteriorNode(current, top, origin, direction, inverseDirection, tMax);
+            // A leaf, popped or just entered, is taken in the same iteration.
+            if (current != kNoEntry && (current & kLeafEntryFlag) != 0u) {
                 cursor = (current & ~kLeafEntryFlag) >> 4;
                 leafEnd = cursor + (current & 15u);
                 current = kNoEntry;
                 break;
-            }
-            uint meta = floatBitsToUint(nodes[current].boundsMax.w);  // the children's boxes are all we need
-            uint second = floatBitsToUint(nodes[current].boundsMin.w);
-            // Near child (on the ray's side of the split) and far child.
-            bool negative = direction[meta & 3u] < 0.0;
-            uint nearIndex = negative ? second : current + 1u;
-            uint farIndex = negative ? current + 1u : second;
-            BvhNode nearNode = nodes[nearIndex];
-            BvhNode farNode = nodes[farIndex];
-            gNodeVisits += 2u;
-            bool hitNear = hitsBox(nearNode.boundsMin.xyz, nearNode.boundsMax.xyz, origin, inverseDirection, tMax);
-            bool hitFar = hitsBox(farNode.boundsMin.xyz, farNode.boundsMax.xyz, origin, inverseDirection, tMax);
-            current = hitNear ? stackEntry(nearIndex, nearNode) : kNoEntry;
-            if (hitFar) {
-                uint farEntry = stackEntry(farIndex, farNode);
-                if (!hitNear) {
-                    current = farEntry;
-                } else if (top + 2u > kTraversalStackSize) {
-                    gTraversalOverflows += 1u;  // the far child is dropped, never silently
-                } else {
-                    traversalStacks[stackBase + top] = farEntry;
-                    top += 1u;
-                }
             }
         }
         while (cursor < leafEnd && steps < budget) {

@@ -18,7 +18,7 @@ struct VulkanRenderOptions {
     // Loop steps per pixel and dispatch. lavapipe ends any shader loop after 65,535 iterations;
     // this stays far below. Larger values (tests only) let the driver's limit show.
     std::uint32_t iterationBudget = 16384;
-    std::uint32_t tileSize = 128;  // pixels per side; a pixel's trace state is 0.5-1.5 KiB
+    std::uint32_t tileSize = 256;  // pixels per side; a pixel's trace state is 0.5-1.5 KiB
     // Build the kernel for what the scene needs (render/trace_specialization.h); false: the
     // general kernel, which decides everything at run time (same image, more code to run).
     bool specialize = true;
