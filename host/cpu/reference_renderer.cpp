@@ -41,6 +41,14 @@ struct TraceCounters {
     std::uint64_t inconsistentMedia = 0;
     std::uint64_t touchingProbes = 0;
     TraversalCounters traversal;
+    std::vector<TracedRay>* tracedRays = nullptr;  // this thread's log, when one is asked for
+
+    template <class Real>
+    void logRay(const Ray<Real>& ray, bool anyHit) {
+        if (tracedRays)
+            tracedRays->push_back({glm::vec3(ray.origin), float(ray.tMin), glm::vec3(ray.direction),
+                                   float(std::min<Real>(ray.tMax, Real(std::numeric_limits<float>::max()))), anyHit});
+    }
 
     void addTo(RenderStats& stats) const {
         stats.rays.primary += rays.primary;
@@ -136,6 +144,7 @@ private:
     Color trace(const Vec3& origin, const Vec3& d, std::uint32_t depth, const MediumStack& media, const Color& weight,
                 TraceCounters& counters) const {
         Ray<Real> ray{origin, d, Real(0), std::numeric_limits<Real>::max()};
+        counters.logRay(ray, false);
         const auto found = traceClosest<Real>(bvh_.nodes, vertices_, ray, &counters.traversal);
         const Color mu = mediumAttenuation(media);
         if (!found) {
@@ -255,6 +264,7 @@ private:
         counters.rays.shadow += 1;
         // t in units of the whole segment: 0 < t < 1 excludes the light's own position.
         const Ray<Real> shadow{origin, lightPosition - origin, Real(0), Real(1)};
+        counters.logRay(shadow, true);
         return !traceAny<Real>(bvh_.nodes, vertices_, shadow, &counters.traversal);
     }
 
@@ -411,8 +421,12 @@ void renderRows(const Scene& scene, const Bvh& bvh, unsigned threadCount, const 
     std::atomic<std::uint32_t> nextRow{0};
     std::atomic<std::uint32_t> rowsDone{0};
     std::mutex statsMutex;
+    std::vector<std::vector<TracedRay>> threadRays(options.tracedRays ? threadCount : 0);
+    std::atomic<unsigned> nextThread{0};
     auto worker = [&]() {
         TraceCounters counters;
+        const unsigned thread = nextThread++;
+        if (options.tracedRays) counters.tracedRays = &threadRays[thread];
         for (std::uint32_t y = nextRow++; y < height; y = nextRow++) {
             for (std::uint32_t x = 0; x < width; ++x) {
                 const glm::vec<3, Real> c = tracer.renderPixel(x, y, counters);
@@ -427,6 +441,8 @@ void renderRows(const Scene& scene, const Bvh& bvh, unsigned threadCount, const 
         }
         std::lock_guard lock(statsMutex);
         counters.addTo(stats);
+        if (options.tracedRays)
+            options.tracedRays->insert(options.tracedRays->end(), threadRays[thread].begin(), threadRays[thread].end());
     };
     std::vector<std::thread> threads;
     for (unsigned i = 1; i < threadCount; ++i) threads.emplace_back(worker);

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <span>
+#include <vector>
 
 #include "bvh/bvh.h"
 #include "image/image.h"
@@ -13,10 +14,23 @@
 
 namespace vitrum {
 
+// A ray the reference traced, kept so that a benchmark can trace the same rays with another
+// traversal (bench/whitted_bench.cpp).
+struct TracedRay {
+    glm::vec3 origin;
+    float tMin;
+    glm::vec3 direction;  // not unit for shadow rays: o + t d reaches the light at t = 1
+    float tMax;
+    bool anyHit;  // a shadow ray (any hit in (tMin, tMax)); otherwise the closest hit is wanted
+};
+
 struct ReferenceOptions {
     bool doublePrecision = false;
     unsigned threads = 0;  // 0: all hardware threads
     std::function<void(double)> progress;  // fraction done, called from worker threads
+    // When set, every primary, shadow, reflected and refracted ray is appended (touching probes
+    // are not rays of the tree and are left out), in no particular order.
+    std::vector<TracedRay>* tracedRays = nullptr;
 };
 
 // Renders scene.camera with scene.settings. `bvh` was built over scene.triangles.
