@@ -556,6 +556,33 @@ TEST(ReferenceRenderer, ThreadCountDoesNotChangeTheImage) {
     EXPECT_EQ(many.device, "CPU reference (float), 3 threads");
 }
 
+TEST(ReferenceRenderer, TracedRayLogHoldsEveryRayOfTheTree) {
+    // The log is what bench/whitted_bench.cpp replays with Embree: it must hold exactly the rays
+    // the counters count, each the kind it claims, the primary rays from the camera.
+    const Scene scene = mixedScene();
+    const Bvh bvh = buildBvh(scene.triangles);
+    RenderStats stats;
+    std::vector<TracedRay> rays;
+    ReferenceOptions options;
+    options.threads = 2;
+    options.tracedRays = &rays;
+    const Image logged = renderReference(scene, bvh, options, stats);
+    EXPECT_EQ(rays.size(), stats.rays.total());
+    std::uint64_t shadow = 0, fromCamera = 0;
+    for (const TracedRay& r : rays) {
+        shadow += r.anyHit;
+        if (r.anyHit) EXPECT_EQ(r.tMax, 1.0f);  // o + t d reaches the light at t = 1
+        else EXPECT_NEAR(glm::length(r.direction), 1.0f, 1e-5f);
+        fromCamera += !r.anyHit && r.origin == scene.camera.from;
+    }
+    EXPECT_GT(stats.rays.shadow, 0u);
+    EXPECT_GT(stats.rays.refraction, 0u);
+    EXPECT_EQ(shadow, stats.rays.shadow);
+    EXPECT_EQ(fromCamera, stats.rays.primary);
+    // Logging changes nothing else.
+    EXPECT_EQ(logged.pixels, render(scene).pixels);
+}
+
 Scene scaledScene(Scene scene, float scale) {
     scene.camera.from *= scale;
     scene.camera.at *= scale;
