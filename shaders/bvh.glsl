@@ -93,14 +93,15 @@ void beginTraversal(vec3 origin, vec3 direction, float tMin, float tMax) {
 // `current` (kNoEntry when neither is hit) and pushes the farther one when both are.
 void visitInteriorNode(inout uint current, inout uint top, vec3 origin, vec3 direction, vec3 inverseDirection,
                        float tMax) {
-    uint meta = floatBitsToUint(nodes[current].boundsMax.w);  // the children's boxes are all we need
-    uint second = floatBitsToUint(nodes[current].boundsMin.w);
+    uvec2 links = loadNodeLinks(current);  // the children's boxes are all we need of this node
+    uint second = links.x;
+    uint meta = links.y;
     // Near child (on the ray's side of the split) and far child.
     bool negative = direction[meta & 3u] < 0.0;
     uint nearIndex = negative ? second : current + 1u;
     uint farIndex = negative ? current + 1u : second;
-    BvhNode nearNode = nodes[nearIndex];
-    BvhNode farNode = nodes[farIndex];
+    BvhNode nearNode = loadNode(nearIndex);
+    BvhNode farNode = loadNode(farIndex);
     gNodeVisits += 2u;
     bool hitNear = hitsBox(nearNode.boundsMin.xyz, nearNode.boundsMax.xyz, origin, inverseDirection, tMax);
     bool hitFar = hitsBox(farNode.boundsMin.xyz, farNode.boundsMax.xyz, origin, inverseDirection, tMax);
@@ -142,7 +143,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
     uint current = kNoEntry;  // the entry to visit next, taken off the stack or kept from a visit
     if (top == kFreshTraversal) {
         top = 0u;
-        current = stackEntry(0u, nodes[0]);
+        current = stackEntry(0u, loadNode(0u));
     }
     bool over = false;
     // Aila and Laine's "while-while": inner nodes until every lane of the SIMD group holds a leaf
@@ -172,7 +173,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
             steps += 1u;
             uint triangle = cursor;
             cursor += 1u;
-            TriangleVertices tri = vertices[triangle];
+            TriangleVertices tri = loadTriangle(triangle);
             vec3 hit = intersectTriangle(tri, origin, direction);
             if (hit.x > tMin && hit.x < tMax) {
                 if (kTouchingProbe && mode == kTraverseTouching) {

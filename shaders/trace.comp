@@ -74,13 +74,13 @@ uint materialModel(GpuMaterial m) { return floatBitsToUint(m.ambient.w); }
 float mediumIor(PendingRay r) {
     if (!usesMaterial(kMaterialGlass)) return params.background.w;
     uint count = mediaCount(r);
-    return count == 0u ? params.background.w : materials[objectMaterial[r.media[count - 1u]]].attenuation.w;
+    return count == 0u ? params.background.w : loadMaterial(objectMaterial[r.media[count - 1u]]).attenuation.w;
 }
 
 vec3 mediumAttenuation(PendingRay r) {
     if (!kAbsorption) return vec3(0.0);
     uint count = mediaCount(r);
-    return count == 0u ? vec3(0.0) : materials[objectMaterial[r.media[count - 1u]]].attenuation.xyz;
+    return count == 0u ? vec3(0.0) : loadMaterial(objectMaterial[r.media[count - 1u]]).attenuation.xyz;
 }
 
 void startPrimaryRay() {
@@ -107,7 +107,7 @@ void startPrimaryRay() {
 
 void onTouchingHit(TriangleVertices tri, float t) {
     uint object = floatBitsToUint(tri.v1.w);
-    if (materialModel(materials[floatBitsToUint(tri.v0.w)]) != kMaterialGlass || object == hitObject()) return;
+    if (materialModel(loadMaterial(floatBitsToUint(tri.v0.w))) != kMaterialGlass || object == hitObject()) return;
     uint count = st.touching.w;
     if ((count > 0u && (st.touching.x & 0x7FFFFFFFu) == object) ||
         (count > 1u && (st.touching.y & 0x7FFFFFFFu) == object) ||
@@ -142,8 +142,8 @@ void finishTrace() {
     float t = st.traceDirection.w;
     st.ray.weight.xyz *= beerLambert(mu, t);
 
-    TriangleVertices tri = vertices[triangle];
-    TriangleShading sh = shading[triangle];
+    TriangleVertices tri = loadTriangle(triangle);
+    TriangleShading sh = loadShading(triangle);
     vec2 bary = st.hitUv.zw;
     float w0 = 1.0 - bary.x - bary.y;
     vec3 edgeCross = cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz);
@@ -166,7 +166,7 @@ void finishTrace() {
     st.hitGeometricNormal = vec4(geometricNormal, tri.v1.w);
     st.hitUv.xy = uv;
 
-    uint model = materialModel(materials[hitMaterial()]);
+    uint model = materialModel(loadMaterial(hitMaterial()));
     if (usesMaterial(kMaterialGlass) && model == kMaterialGlass) {
         st.touching = uvec4(0u);
         st.probe.x = t;
@@ -204,7 +204,7 @@ vec3 diffuseColour(GpuMaterial m) {
 // The visibility-weighted part of light `index` at the hit: m_d max(0, n.l) (+ Phong's
 // m_s max(0, l_r.v)^Ns), times the light's colour and fall-off.
 vec3 directLight(uint index) {
-    GpuMaterial m = materials[hitMaterial()];
+    GpuMaterial m = loadMaterial(hitMaterial());
     GpuLight light = lights[index];
     vec3 p = st.hitPosition.xyz;
     vec3 n = st.hitNormal.xyz;
@@ -229,11 +229,11 @@ vec3 directLight(uint index) {
 void nextLight() {
     uint index = st.control.z;
     if (!kShadowRays || index >= params.counts.x) {
-        uint model = materialModel(materials[hitMaterial()]);
+        uint model = materialModel(loadMaterial(hitMaterial()));
         st.control.x = usesMaterial(kMaterialPhong) && model == kMaterialPhong ? kPhaseScatter : kPhaseNextRay;
         return;
     }
-    GpuMaterial m = materials[hitMaterial()];
+    GpuMaterial m = loadMaterial(hitMaterial());
     st.sampleColour.xyz += st.ray.weight.xyz * lights[index].colour.xyz * m.ambient.xyz;
     vec3 direct = directLight(index);
     if (all(equal(direct, vec3(0.0)))) {
@@ -328,7 +328,7 @@ void enterMedium(inout uvec4 media, inout uint count, uint object) {
 }
 
 float ior(uvec4 media, uint count) {
-    return count == 0u ? params.background.w : materials[objectMaterial[media[count - 1u]]].attenuation.w;
+    return count == 0u ? params.background.w : loadMaterial(objectMaterial[media[count - 1u]]).attenuation.w;
 }
 
 // Glass: the ray enters or leaves object k, decided by the geometric normal of the consistently
@@ -386,7 +386,7 @@ bool spawnsRays() {
 }
 
 void scatter() {
-    GpuMaterial m = materials[hitMaterial()];
+    GpuMaterial m = loadMaterial(hitMaterial());
     if (usesMaterial(kMaterialGlass) && materialModel(m) == kMaterialGlass) scatterGlass(m);
     else scatterOpaque(m);
     st.control.x = kPhaseNextRay;

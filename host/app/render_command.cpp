@@ -194,24 +194,27 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
     const std::uint32_t tile = std::max(8u, options.tileSize);
     const VkDeviceSize tilePixels =
         VkDeviceSize(std::min(tile, scene.camera.width)) * std::min(tile, scene.camera.height);
+    // As gpu/vulkan_renderer.cpp binds them: the scene's geometry and materials as texel buffers.
+    constexpr BufferKind kTexel = BufferKind::Texel, kStorage = BufferKind::Storage;
     const struct {
         const char* what;
         VkDeviceSize bytes;
+        BufferKind kind;
     } buffers[] = {
-        {"BVH nodes", 2 * triangles * sizeof(gpu::BvhNode)},
-        {"triangle vertices", triangles * sizeof(gpu::TriangleVertices)},
-        {"triangle normals and uvs", triangles * sizeof(gpu::TriangleShading)},
-        {"materials", scene.materials.size() * sizeof(gpu::GpuMaterial)},
-        {"texture texels", texels * 3 * sizeof(float)},
-        {"image", VkDeviceSize(scene.camera.width) * scene.camera.height * sizeof(glm::vec4)},
-        {"trace state of one tile", tilePixels * sizeof(gpu::TraceState)},
-        {"pending rays of one tile", tilePixels * gpu::kRayStackSize * sizeof(gpu::PendingRay)},
-        {"traversal stacks of one tile", tilePixels * gpu::kTraversalStackSize * sizeof(std::uint32_t)},
+        {"BVH nodes", 2 * triangles * sizeof(gpu::BvhNode), kTexel},
+        {"triangle vertices", triangles * sizeof(gpu::TriangleVertices), kTexel},
+        {"triangle normals and uvs", triangles * sizeof(gpu::TriangleShading), kTexel},
+        {"materials", scene.materials.size() * sizeof(gpu::GpuMaterial), kTexel},
+        {"texture texels", texels * 3 * sizeof(float), kStorage},
+        {"image", VkDeviceSize(scene.camera.width) * scene.camera.height * sizeof(glm::vec4), kStorage},
+        {"trace state of one tile", tilePixels * sizeof(gpu::TraceState), kStorage},
+        {"pending rays of one tile", tilePixels * gpu::kRayStackSize * sizeof(gpu::PendingRay), kStorage},
+        {"traversal stacks of one tile", tilePixels * gpu::kTraversalStackSize * sizeof(std::uint32_t), kStorage},
     };
-    const VkDeviceSize limit = storageBufferLimit(device).bytes;
     VkDeviceSize total = 0;
     for (const auto& buffer : buffers) {
-        if (buffer.bytes > limit) throw bufferTooLarge(device, buffer.what, buffer.bytes);
+        if (buffer.bytes > bufferLimit(device, buffer.kind).bytes)
+            throw bufferTooLarge(device, buffer.what, buffer.bytes, buffer.kind);
         total += buffer.bytes;
     }
     VkPhysicalDeviceMemoryProperties memory{};

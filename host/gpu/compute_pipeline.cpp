@@ -86,6 +86,7 @@ void ComputePipeline::bind(std::span<const GpuBuffer* const> buffers) {
     if (buffers.size() != bindings_.size()) throw std::logic_error("ComputePipeline::bind: wrong number of buffers");
     std::vector<VkDescriptorBufferInfo> infos(buffers.size());
     std::vector<VkWriteDescriptorSet> writes(buffers.size());
+    std::vector<VkBufferView> views(buffers.size());
     for (std::uint32_t b = 0; b < buffers.size(); ++b) {
         infos[b] = {.buffer = buffers[b]->buffer(), .offset = 0, .range = VK_WHOLE_SIZE};
         writes[b] = {
@@ -94,8 +95,15 @@ void ComputePipeline::bind(std::span<const GpuBuffer* const> buffers) {
             .dstBinding = b,
             .descriptorCount = 1,
             .descriptorType = bindings_[b],
-            .pBufferInfo = &infos[b],
         };
+        if (bindings_[b] == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
+            if (buffers[b]->texelView() == VK_NULL_HANDLE)
+                throw std::logic_error("ComputePipeline::bind: binding " + std::to_string(b) + " needs a texel buffer");
+            writes[b].pTexelBufferView = &views[b];
+            views[b] = buffers[b]->texelView();
+        } else {
+            writes[b].pBufferInfo = &infos[b];
+        }
     }
     vkUpdateDescriptorSets(device_, std::uint32_t(writes.size()), writes.data(), 0, nullptr);
 }

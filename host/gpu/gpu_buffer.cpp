@@ -29,23 +29,29 @@ std::string describeBytes(VkDeviceSize bytes) {
     return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
 }
 
-StorageBufferLimit storageBufferLimit(const VulkanDevice& device) {
-    StorageBufferLimit limit{device.properties().limits.maxStorageBufferRange, "maxStorageBufferRange"};
+BufferLimit bufferLimit(const VulkanDevice& device, BufferKind kind) {
+    const VkPhysicalDeviceLimits& limits = device.properties().limits;
+    BufferLimit limit = kind == BufferKind::Storage
+                            ? BufferLimit{limits.maxStorageBufferRange, "maxStorageBufferRange"}
+                            : BufferLimit{VkDeviceSize(limits.maxTexelBufferElements) * 16, "maxTexelBufferElements"};
     if (auto test = testBufferLimit(); test && *test < limit.bytes) limit = {*test, "VITRUM_MAX_BUFFER_BYTES"};
     return limit;
 }
 
-InputError bufferTooLarge(const VulkanDevice& device, const std::string& what, VkDeviceSize size) {
-    StorageBufferLimit limit = storageBufferLimit(device);
+InputError bufferTooLarge(const VulkanDevice& device, const std::string& what, VkDeviceSize size, BufferKind kind) {
+    const BufferLimit limit = bufferLimit(device, kind);
     return InputError("the scene does not fit the device: " + what + " needs " + describeBytes(size) + ", but " +
-                      device.name() + " allows " + describeBytes(limit.bytes) + " per storage buffer (" +
+                      device.name() + " allows " + describeBytes(limit.bytes) +
+                      (kind == BufferKind::Storage ? " per storage buffer (" : " per texel buffer of 16-byte texels (") +
                       limit.source + ")");
 }
 
 GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsageFlags usage, const std::string& what)
     : device_(device.device()), size_(size) {
-    if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && size > storageBufferLimit(device).bytes)
-        throw bufferTooLarge(device, what, size);
+    if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && size > bufferLimit(device, BufferKind::Storage).bytes)
+        throw bufferTooLarge(device, what, size, BufferKind::Storage);
+    if ((usage & VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT) && size > bufferLimit(device, BufferKind::Texel).bytes)
+        throw bufferTooLarge(device, what, size, BufferKind::Texel);
     VkBufferCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
         .size = size,
@@ -74,6 +80,19 @@ GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsag
     memory_ = UniqueMemory(device_, memory);
     VK_CHECK(vkBindBufferMemory(device_, buffer, memory, 0));
     VK_CHECK(vkMapMemory(device_, memory, 0, VK_WHOLE_SIZE, 0, &mapped_));
+}
+
+void GpuBuffer::makeTexelView() {
+    VkBufferViewCreateInfo info{
+        .sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO,
+        .buffer = buffer_.get(),
+        .format = VK_FORMAT_R32G32B32A32_UINT,  // its uniform texel buffer support is required by Vulkan
+        .offset = 0,
+        .range = VK_WHOLE_SIZE,
+    };
+    VkBufferView view = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateBufferView(device_, &info, nullptr, &view));
+    view_ = UniqueBufferView(device_, view);
 }
 
 GpuBuffer::~GpuBuffer() {

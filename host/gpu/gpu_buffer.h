@@ -23,6 +23,8 @@ public:
     GpuBuffer& operator=(GpuBuffer&&) noexcept = default;
 
     VkBuffer buffer() const { return buffer_.get(); }
+    // The uvec4 texel view of a buffer made by makeTexelBuffer (VK_NULL_HANDLE otherwise).
+    VkBufferView texelView() const { return view_.get(); }
     VkDeviceSize size() const { return size_; }
     void* mapped() const { return mapped_; }
 
@@ -37,24 +39,47 @@ public:
     }
 
 private:
+    template <class T>
+    friend GpuBuffer makeTexelBuffer(const VulkanDevice&, std::span<const T>, const std::string&);
+    void makeTexelView();
+
     UniqueBuffer buffer_;
+    UniqueBufferView view_;
     UniqueMemory memory_;
     VkDevice device_ = VK_NULL_HANDLE;
     VkDeviceSize size_ = 0;
     void* mapped_ = nullptr;
 };
 
-// The largest storage buffer the checks allow: the device's maxStorageBufferRange, or less where
-// the environment variable VITRUM_MAX_BUFFER_BYTES (for tests only) asks for less.
-struct StorageBufferLimit {
+// What a buffer is bound as: its size limit differs.
+enum class BufferKind { Storage, Texel };
+
+// The largest buffer of a kind the checks allow: the device's maxStorageBufferRange, or
+// maxTexelBufferElements texels of 16 bytes, or less where the environment variable
+// VITRUM_MAX_BUFFER_BYTES (for tests only) asks for less.
+struct BufferLimit {
     VkDeviceSize bytes;
-    const char* source;  // "maxStorageBufferRange" or "VITRUM_MAX_BUFFER_BYTES"
+    const char* source;  // "maxStorageBufferRange", "maxTexelBufferElements" or "VITRUM_MAX_BUFFER_BYTES"
 };
-StorageBufferLimit storageBufferLimit(const VulkanDevice& device);
+BufferLimit bufferLimit(const VulkanDevice& device, BufferKind kind);
 // "N bytes" below 1 MiB, else "N MiB" (rounded up).
 std::string describeBytes(VkDeviceSize bytes);
 // "the scene does not fit the device: WHAT needs N MiB, but DEVICE allows M MiB per storage buffer (...)"
-InputError bufferTooLarge(const VulkanDevice& device, const std::string& what, VkDeviceSize size);
+InputError bufferTooLarge(const VulkanDevice& device, const std::string& what, VkDeviceSize size, BufferKind kind);
+
+// A uniform texel buffer of R32G32B32A32_UINT texels (a usamplerBuffer in GLSL) holding `data`,
+// whose size must be a multiple of 16 bytes. On lavapipe a texel fetch is a vector gather, while
+// every storage-buffer access is a loop over the lanes: the BVH and the triangles are read this
+// way. Checks the size against the device's maxTexelBufferElements first.
+template <class T>
+GpuBuffer makeTexelBuffer(const VulkanDevice& device, std::span<const T> data, const std::string& what) {
+    static_assert(sizeof(T) % 16 == 0, "texel buffers hold whole uvec4 texels");
+    VkDeviceSize size = std::max<VkDeviceSize>(data.size_bytes(), 16);
+    GpuBuffer buffer(device, size, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, what);
+    buffer.upload(data);
+    buffer.makeTexelView();
+    return buffer;
+}
 
 // A storage buffer holding `data` (at least 16 bytes: Vulkan has no empty buffers). Checks the
 // size against the device's maxStorageBufferRange first.

@@ -8,6 +8,8 @@ ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecial
     std::array<VkDescriptorType, kTraceBindingCount> bindings;
     bindings.fill(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     bindings[kBindingParams] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    for (TraceBinding texels : {kBindingNodes, kBindingVertices, kBindingShading, kBindingMaterials})
+        bindings[texels] = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     const auto constants = specialization.constants();
     std::array<VkSpecializationMapEntry, constants.size()> entries;
     for (std::uint32_t id = 0; id < entries.size(); ++id)

@@ -67,10 +67,10 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     const std::uint32_t tileHeight = std::min(tileSize, height);
 
     GpuBuffer params(device, sizeof(gpu::RenderParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "render parameters");
-    GpuBuffer nodes = makeStorageBuffer(device, spanOf(packed.nodes), "BVH nodes");
-    GpuBuffer vertices = makeStorageBuffer(device, spanOf(packed.vertices), "triangle vertices");
-    GpuBuffer shading = makeStorageBuffer(device, spanOf(packed.shading), "triangle normals and uvs");
-    GpuBuffer materials = makeStorageBuffer(device, spanOf(packed.materials), "materials");
+    GpuBuffer nodes = makeTexelBuffer(device, spanOf(packed.nodes), "BVH nodes");
+    GpuBuffer vertices = makeTexelBuffer(device, spanOf(packed.vertices), "triangle vertices");
+    GpuBuffer shading = makeTexelBuffer(device, spanOf(packed.shading), "triangle normals and uvs");
+    GpuBuffer materials = makeTexelBuffer(device, spanOf(packed.materials), "materials");
     GpuBuffer lights = makeStorageBuffer(device, spanOf(packed.lights), "lights");
     GpuBuffer textures = makeStorageBuffer(device, spanOf(packed.textures), "texture table");
     GpuBuffer texels = makeStorageBuffer(device, spanOf(packed.texels), "texture texels");
