@@ -113,7 +113,7 @@ void visitInteriorNode(inout uint current, inout uint top, vec3 origin, vec3 dir
     } else if (top + 2u > kTraversalStackSize) {
         gTraversalOverflows += 1u;  // the far child is dropped, never silently
     } else {
-        traversalStacks[stackBase + top] = farEntry;
+        gStack[top] = farEntry;
         top += 1u;
     }
 }
@@ -125,8 +125,8 @@ void visitInteriorNode(inout uint current, inout uint top, vec3 origin, vec3 dir
 // kTraverseTouching keeps tMax and hands every hit to onTouchingHit instead. Returns false when
 // the budget ran out first; the state is then back in `st` and a later call resumes it.
 //
-// The ray and the cursor live in locals while it runs; the stack is read and written in place in
-// traversalStacks[stackBase ..]. Nodes are
+// The ray and the cursor live in locals while it runs, the stack in the private array gStack
+// (trace.comp saves it to traversalStacks[] only when the pixel is suspended mid-traversal). Nodes are
 // visited depth first, near child (by the split axis) first, as host/bvh/bvh_traversal.cpp does,
 // so both find the same closest triangle, ties included.
 bool traverse(uint mode, inout uint steps, uint budget) {
@@ -158,7 +158,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
                     break;
                 }
                 top -= 1u;
-                current = traversalStacks[stackBase + top];
+                current = gStack[top];
             }
             if ((current & kLeafEntryFlag) == 0u) visitInteriorNode(current, top, origin, direction, inverseDirection, tMax);
             // A leaf, popped or just entered, is taken in the same iteration.
@@ -192,7 +192,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
     }
     // Suspended: the entry in hand goes back on the stack (pushes leave it a free slot).
     if (!over && current != kNoEntry) {
-        traversalStacks[stackBase + top] = current;
+        gStack[top] = current;
         top += 1u;
     }
     st.traceDirection.w = tMax;

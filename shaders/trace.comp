@@ -27,8 +27,11 @@ uint gTouchingProbes = 0u;
 
 // This pixel's pending rays: pendingRays[pendingBase .. pendingBase + kPendingRayCapacity).
 uint pendingBase = 0u;
-// This pixel's BVH traversal stack: traversalStacks[stackBase .. stackBase + kTraversalStackSize).
+// This pixel's BVH traversal stack, in private memory while the kernel runs: on lavapipe that is
+// cheaper than a storage buffer, whose every access loops over the lanes. A pixel suspended in
+// the middle of a traversal keeps it in traversalStacks[stackBase .. stackBase + kTraversalStackSize).
 uint stackBase = 0u;
+uint gStack[kTraversalStackSize];
 
 // A surface the touching probe found: a glass surface of another object than the one hit, at
 // (nearly) the same point. Recorded once per object, at most 3.
@@ -406,6 +409,12 @@ void nextRay() {
     st.control.x = kPhaseTrace;
 }
 
+// Whether the pixel is inside a BVH traversal that has a stack (begun and not fresh).
+bool inTraversal() {
+    uint phase = st.control.x;
+    return (phase == kPhaseTrace || phase == kPhaseShadow || phase == kPhaseTouching) && st.control.w != kFreshTraversal;
+}
+
 // The next sample's primary ray, or the end of the pixel.
 void startSample() {
     if (floatBitsToUint(st.accumulated.w) >= params.image.z) st.control.x = kPhaseDone;
@@ -431,6 +440,9 @@ void main() {
     } else {
         if (states[slot].control.x == kPhaseDone) return;
         st = states[slot];
+        if (inTraversal()) {
+            for (uint i = 0u; i < st.control.w; ++i) gStack[i] = traversalStacks[stackBase + i];
+        }
     }
 
     // lavapipe runs 8 invocations in lock step and executes both sides of every branch under a
@@ -472,6 +484,9 @@ void main() {
         // the end and the budget was stopped by the driver: count it, never hide it.
         if (steps < budget) atomicAdd(stats[kStatLoopLimitSuspected], 1u);
         states[slot] = st;
+        if (inTraversal()) {
+            for (uint i = 0u; i < st.control.w; ++i) traversalStacks[stackBase + i] = gStack[i];
+        }
         atomicAdd(stats[kStatUnfinishedPixels], 1u);
     }
     addStat(kStatTraversalSteps, steps);

@@ -140,10 +140,10 @@ struct PendingRay {
 
 // The pending rays of a pixel are not part of its TraceState: they live in their own buffer,
 // `capacity` entries a pixel (the specialized kernel's kPendingRayCapacity, sized to what the
-// scene can reach), read and written in place, so suspending a pixel never copies them. So does
-// its BVH traversal stack (kTraversalStackSize uints a pixel): on lavapipe every load and store
-// of a storage buffer costs a loop over the 8 lanes, on every path, taken or not, so copying
-// state that need not move is what makes a kernel slow.
+// scene can reach), read and written in place, so suspending a pixel never copies them. Nor is
+// its BVH traversal stack (kTraversalStackSize uints a pixel, in a buffer of its own): the kernel
+// keeps it in private memory and saves only the entries in use, only when a pixel is suspended in
+// the middle of a traversal. On lavapipe every storage-buffer access is a loop over the 8 lanes.
 struct TraceState {
     PendingRay ray;                      // the ray being traced (or shaded)
     vec4 traceOrigin;                    // the ray of the current traversal; .w = tMin

@@ -166,5 +166,24 @@ TEST(LoopLimit, DriverLimitIsDetectedAndRecovered) {
     expectImagesMatch(r);
 }
 
+// A budget of a few steps suspends every pixel again and again, at every kind of step: in the
+// middle of traversals (whose stacks are then saved and restored), between shading phases, with
+// pending rays queued. The image and the rays traced must be exactly those of one dispatch.
+TEST(LoopLimit, TinyBudgetGivesTheImageOfOneDispatch) {
+    Scene scene = loadSized("scenes/demo.json", 24, 18, FresnelModel::Exact);
+    const Bvh bvh = buildBvh(scene.triangles);
+    RenderStats whole, split;
+    const std::uint32_t before = testDevice().validationMessages();
+    const Image a = renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{}, whole);
+    const Image b = renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = 7}, split);
+    EXPECT_EQ(testDevice().validationMessages(), before);
+    EXPECT_EQ(whole.dispatches, 1u);
+    EXPECT_GT(split.dispatches, 50u);
+    EXPECT_EQ(a.pixels, b.pixels);
+    EXPECT_EQ(whole.rays.total(), split.rays.total());
+    EXPECT_EQ(whole.nodeVisits, split.nodeVisits);
+    EXPECT_EQ(split.limits.loopLimitSuspected, 0u);
+}
+
 }  // namespace
 }  // namespace vitrum::testing
