@@ -77,13 +77,13 @@ uint materialModel(GpuMaterial m) { return floatBitsToUint(m.ambient.w); }
 float mediumIor(PendingRay r) {
     if (!usesMaterial(kMaterialGlass)) return params.background.w;
     uint count = mediaCount(r);
-    return count == 0u ? params.background.w : loadMaterial(objectMaterial[r.media[count - 1u]]).attenuation.w;
+    return count == 0u ? params.background.w : loadMaterial(objectMaterial(r.media[count - 1u])).attenuation.w;
 }
 
 vec3 mediumAttenuation(PendingRay r) {
     if (!kAbsorption) return vec3(0.0);
     uint count = mediaCount(r);
-    return count == 0u ? vec3(0.0) : loadMaterial(objectMaterial[r.media[count - 1u]]).attenuation.xyz;
+    return count == 0u ? vec3(0.0) : loadMaterial(objectMaterial(r.media[count - 1u])).attenuation.xyz;
 }
 
 void startPrimaryRay() {
@@ -208,7 +208,7 @@ vec3 diffuseColour(GpuMaterial m) {
 // m_s max(0, l_r.v)^Ns), times the light's colour and fall-off.
 vec3 directLight(uint index) {
     GpuMaterial m = loadMaterial(hitMaterial());
-    GpuLight light = lights[index];
+    GpuLight light = loadLight(index);
     vec3 p = st.hitPosition.xyz;
     vec3 n = st.hitNormal.xyz;
     vec3 toLight = light.position.xyz - p;
@@ -237,7 +237,7 @@ void nextLight() {
         return;
     }
     GpuMaterial m = loadMaterial(hitMaterial());
-    st.sampleColour.xyz += st.ray.weight.xyz * lights[index].colour.xyz * m.ambient.xyz;
+    st.sampleColour.xyz += st.ray.weight.xyz * loadLight(index).colour.xyz * m.ambient.xyz;
     vec3 direct = directLight(index);
     if (all(equal(direct, vec3(0.0)))) {
         st.control.z = index + 1u;
@@ -245,7 +245,7 @@ void nextLight() {
     }
     vec3 origin = offsetRayOrigin(st.hitPosition.xyz, st.hitGeometricNormal.xyz);
     gShadowRays += 1u;
-    beginTraversal(origin, lights[index].position.xyz - origin, 0.0, 1.0);
+    beginTraversal(origin, loadLight(index).position.xyz - origin, 0.0, 1.0);
     st.control.x = kPhaseShadow;
 }
 
@@ -331,7 +331,7 @@ void enterMedium(inout uvec4 media, inout uint count, uint object) {
 }
 
 float ior(uvec4 media, uint count) {
-    return count == 0u ? params.background.w : loadMaterial(objectMaterial[media[count - 1u]]).attenuation.w;
+    return count == 0u ? params.background.w : loadMaterial(objectMaterial(media[count - 1u])).attenuation.w;
 }
 
 // Glass: the ray enters or leaves object k, decided by the geometric normal of the consistently

@@ -205,6 +205,7 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         {"triangle vertices", triangles * sizeof(gpu::TriangleVertices), kTexel},
         {"triangle normals and uvs", triangles * sizeof(gpu::TriangleShading), kTexel},
         {"materials", scene.materials.size() * sizeof(gpu::GpuMaterial), kTexel},
+        {"lights", scene.lights.size() * sizeof(gpu::GpuLight), kTexel},
         {"texture texels", texels * 3 * sizeof(float), kStorage},
         {"image", VkDeviceSize(scene.camera.width) * scene.camera.height * sizeof(glm::vec4), kStorage},
         {"trace state of one tile", tilePixels * sizeof(gpu::TraceState), kStorage},

@@ -8,7 +8,8 @@ ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecial
     std::array<VkDescriptorType, kTraceBindingCount> bindings;
     bindings.fill(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     bindings[kBindingParams] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    for (TraceBinding texels : {kBindingNodes, kBindingVertices, kBindingShading, kBindingMaterials})
+    for (TraceBinding texels : {kBindingNodes, kBindingVertices, kBindingShading, kBindingMaterials, kBindingLights,
+                                kBindingObjectMaterials})
         bindings[texels] = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     const auto constants = specialization.constants();
     std::array<VkSpecializationMapEntry, constants.size()> entries;

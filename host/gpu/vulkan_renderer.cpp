@@ -47,6 +47,13 @@ void addCounters(RenderStats& stats, const std::uint32_t* counters) {
     stats.touchingProbes += counters[gpu::kStatTouchingProbes];
 }
 
+// Four uints a texel, zero-padded: the layout shaders/bindings.glsl's objectMaterial() reads.
+std::vector<glm::uvec4> fourPerTexel(const std::vector<std::uint32_t>& values) {
+    std::vector<glm::uvec4> texels((values.size() + 3) / 4, glm::uvec4(0u));
+    for (std::size_t i = 0; i < values.size(); ++i) texels[i / 4][i % 4] = values[i];
+    return texels;
+}
+
 }  // namespace
 
 Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, const VulkanRenderOptions& options,
@@ -71,10 +78,11 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     GpuBuffer vertices = makeTexelBuffer(device, spanOf(packed.vertices), "triangle vertices");
     GpuBuffer shading = makeTexelBuffer(device, spanOf(packed.shading), "triangle normals and uvs");
     GpuBuffer materials = makeTexelBuffer(device, spanOf(packed.materials), "materials");
-    GpuBuffer lights = makeStorageBuffer(device, spanOf(packed.lights), "lights");
+    GpuBuffer lights = makeTexelBuffer(device, spanOf(packed.lights), "lights");
     GpuBuffer textures = makeStorageBuffer(device, spanOf(packed.textures), "texture table");
     GpuBuffer texels = makeStorageBuffer(device, spanOf(packed.texels), "texture texels");
-    GpuBuffer objectMaterials = makeStorageBuffer(device, spanOf(packed.objectMaterials), "object media");
+    const std::vector<glm::uvec4> objectMaterialTexels = fourPerTexel(packed.objectMaterials);
+    GpuBuffer objectMaterials = makeTexelBuffer(device, spanOf(objectMaterialTexels), "object media");
     GpuBuffer pixels(device, std::max<VkDeviceSize>(VkDeviceSize(width) * height * sizeof(glm::vec4), 16),
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "image");
     const VkDeviceSize tilePixels = VkDeviceSize(tileWidth) * tileHeight;
