@@ -45,18 +45,18 @@ vec3 intersectTriangle(TriangleVertices tri, vec3 origin, vec3 direction) {
     return vec3(scaledT * invDet, u1 * invDet, u2 * invDet);
 }
 
-// Slab test against (0, tMax) (Kay and Kajiya), as host/bvh/bvh_traversal.cpp does it: an axis
+// Slab test against (tMin, tMax) (Kay and Kajiya), as host/bvh/bvh_traversal.cpp does it: an axis
 // whose slab distance is NaN (0 * inf: the ray runs in the plane of a face) does not constrain
 // the segment, and the exit distance is widened by 1 + 2 gamma(3) so that rounding never culls a
 // triangle lying on a face of the box (pbrt-v4, "Robust Ray-Bounds Intersections").
-bool hitsBox(vec3 boxMin, vec3 boxMax, vec3 origin, vec3 inverseDirection, float tMax) {
+bool hitsBox(vec3 boxMin, vec3 boxMax, vec3 origin, vec3 inverseDirection, float tMin, float tMax) {
     const float kFarScale = 1.00000036;
     vec3 t0 = (boxMin - origin) * inverseDirection;
     vec3 t1 = (boxMax - origin) * inverseDirection;
     bvec3 valid = bvec3(vec3(equal(t0, t0)) * vec3(equal(t1, t1)));
     vec3 tNear = mix(vec3(-3.0e38), min(t0, t1), valid);
     vec3 tFar = mix(vec3(3.0e38), max(t0, t1) * kFarScale, valid);
-    float enter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
+    float enter = max(max(tNear.x, tNear.y), max(tNear.z, tMin));
     float leave = min(min(tFar.x, tFar.y), min(tFar.z, tMax));
     return enter <= leave;
 }
@@ -92,7 +92,7 @@ void beginTraversal(vec3 origin, vec3 direction, float tMin, float tMax) {
 // One interior node of a traversal: tests both children's boxes, keeps the nearer hit child in
 // `current` (kNoEntry when neither is hit) and pushes the farther one when both are.
 void visitInteriorNode(inout uint current, inout uint top, vec3 origin, vec3 direction, vec3 inverseDirection,
-                       float tMax) {
+                       float tMin, float tMax) {
     uvec2 links = loadNodeLinks(current);  // the children's boxes are all we need of this node
     uint second = links.x;
     uint meta = links.y;
@@ -103,8 +103,8 @@ void visitInteriorNode(inout uint current, inout uint top, vec3 origin, vec3 dir
     BvhNode nearNode = loadNode(nearIndex);
     BvhNode farNode = loadNode(farIndex);
     gNodeVisits += 2u;
-    bool hitNear = hitsBox(nearNode.boundsMin.xyz, nearNode.boundsMax.xyz, origin, inverseDirection, tMax);
-    bool hitFar = hitsBox(farNode.boundsMin.xyz, farNode.boundsMax.xyz, origin, inverseDirection, tMax);
+    bool hitNear = hitsBox(nearNode.boundsMin.xyz, nearNode.boundsMax.xyz, origin, inverseDirection, tMin, tMax);
+    bool hitFar = hitsBox(farNode.boundsMin.xyz, farNode.boundsMax.xyz, origin, inverseDirection, tMin, tMax);
     current = hitNear ? stackEntry(nearIndex, nearNode) : kNoEntry;
     if (!hitFar) return;
     uint farEntry = stackEntry(farIndex, farNode);
@@ -160,7 +160,8 @@ bool traverse(uint mode, inout uint steps, uint budget) {
                 top -= 1u;
                 current = gStack[top];
             }
-            if ((current & kLeafEntryFlag) == 0u) visitInteriorNode(current, top, origin, direction, inverseDirection, tMax);
+            if ((current & kLeafEntryFlag) == 0u)
+                visitInteriorNode(current, top, origin, direction, inverseDirection, tMin, tMax);
             // A leaf, popped or just entered, is taken in the same iteration.
             if (current != kNoEntry && (current & kLeafEntryFlag) != 0u) {
                 cursor = (current & ~kLeafEntryFlag) >> 4;
