@@ -113,7 +113,8 @@ int run(int argc, char** argv) {
              << bench::fixed(general.render / special.render, 2) << "x** | " << bench::fixed(general.coldCompile, 2) << " | "
              << bench::fixed(special.coldCompile, 2) << " | " << bench::fixed(general.warmCompile, 3) << " | "
              << bench::fixed(special.warmCompile, 3) << " | " << (identical ? "yes" : "**no**") << " |\n";
-        const double tilePixels = double(std::min(128u, width)) * std::min(128u, height);
+        const std::uint32_t tile = VulkanRenderOptions{}.tileSize;
+        const double tilePixels = double(std::min(tile, width)) * std::min(tile, height);
         work << "| " << name << " | " << special.stats.rays.total() << " | " << k.mediumStackDepth << " | "
              << k.pendingRayCapacity << " | " << general.stats.stateBytesPerPixel << " -> "
              << special.stats.stateBytesPerPixel << " | "
@@ -145,8 +146,10 @@ int run(int argc, char** argv) {
            << "## Work skipped\n\n"
            << "Rays traced are the same for both kernels (the tests check it); the specialized kernel's stacks are "
               "sized to what the scene can reach, its code lacks what the scene cannot need, and it runs no touching "
-              "probe where no two glass objects' boxes overlap. State is the trace state plus the pending rays of "
-              "one pixel; a tile is 128x128 pixels.\n\n"
+              "probe where no two glass objects' boxes overlap. State is the trace state, the traversal stack "
+              "and the pending rays of one pixel; a tile is "
+           << VulkanRenderOptions{}.tileSize << "x" << VulkanRenderOptions{}.tileSize
+           << " pixels, clipped to the image.\n\n"
            << "| scene | rays | medium stack | pending-ray stack | state bytes a pixel | state MiB a tile saved | "
               "touching probes not run | code removed |\n"
            << "|---|---:|---:|---:|---:|---:|---:|---|\n"
