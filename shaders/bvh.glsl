@@ -66,12 +66,12 @@ const uint kTraverseAny = 1u;      // any hit (shadow rays)
 const uint kTraverseTouching = 2u; // every glass surface of another object (see onTouchingHit)
 
 // A traversal stack entry is a node whose box the ray entered: an interior node's index, or a
-// leaf's triangle range, so that popping a leaf reads no node. Triangle indices stay below 2^27
-// (the 128 MiB vertex buffer holds under 2^22 triangles).
+// leaf's triangle range, so that popping a leaf reads no node: 27 bits of first triangle and 4 of
+// count. The host refuses scenes of 2^27 triangles or more (gpu::kMaxTriangles).
 const uint kLeafEntryFlag = 0x80000000u;
 const uint kNoEntry = 0xFFFFFFFFu;
 
-// A fresh traversal: its stack holds only the root, which is not in the stack buffer.
+// A fresh traversal: its stack holds only the root, which traverse() takes without a push.
 const uint kFreshTraversal = 0xFFFFFFFFu;
 
 uint stackEntry(uint index, BvhNode node) {
@@ -118,17 +118,18 @@ void visitInteriorNode(inout uint current, inout uint top, vec3 origin, vec3 dir
     }
 }
 
-// Runs the traversal begun by beginTraversal for at most `budget - steps` steps (each loop
-// iteration is one: a triangle test, an interior node whose two children's boxes it tests, in
-// the manner of Aila and Laine 2009, or taking a leaf off the stack). Returns true when it is over: the closest hit (or, for kTraverseAny, some hit)
-// is in st.traversal.z, its t in st.traceDirection.w and its barycentrics in st.hitUv.zw.
-// kTraverseTouching keeps tMax and hands every hit to onTouchingHit instead. Returns false when
-// the budget ran out first; the state is then back in `st` and a later call resumes it.
+// Runs the traversal begun by beginTraversal for at most `budget - steps` steps. Each loop
+// iteration is one step: a triangle test, an interior node whose two children's boxes it tests
+// (in the manner of Aila and Laine 2009), or taking a leaf off the stack. Returns true when it is
+// over: the closest hit (or, for kTraverseAny, some hit) is in st.traversal.z, its t in
+// st.traceDirection.w and its barycentrics in st.hitUv.zw. kTraverseTouching keeps tMax and
+// hands every hit to onTouchingHit instead. Returns false when the budget ran out first; the
+// state is then back in `st` and a later call resumes it.
 //
 // The ray and the cursor live in locals while it runs, the stack in the private array gStack
-// (trace.comp saves it to traversalStacks[] only when the pixel is suspended mid-traversal). Nodes are
-// visited depth first, near child (by the split axis) first, as host/bvh/bvh_traversal.cpp does,
-// so both find the same closest triangle, ties included.
+// (trace.comp saves it to traversalStacks[] only when the pixel is suspended mid-traversal).
+// Nodes are visited depth first, near child (by the split axis) first, as
+// host/bvh/bvh_traversal.cpp does, so both find the same closest triangle, ties included.
 bool traverse(uint mode, inout uint steps, uint budget) {
     vec3 origin = st.traceOrigin.xyz;
     float tMin = st.traceOrigin.w;

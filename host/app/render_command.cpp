@@ -189,6 +189,9 @@ void applyOverrides(const RenderCommand& c, Scene& scene) {
 // GpuBuffer checks each again then). The BVH has at most 2n - 1 nodes for n triangles.
 void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const VulkanRenderOptions& options) {
     const VkDeviceSize triangles = scene.triangles.size();
+    if (triangles > gpu::kMaxTriangles)
+        throw InputError("the scene has " + std::to_string(triangles) + " triangles; the Vulkan backend traces at most " +
+                         std::to_string(gpu::kMaxTriangles));
     VkDeviceSize texels = 0;
     for (const Texture& texture : scene.textures) texels += texture.texels.size();
     const std::uint32_t tile = std::max(8u, options.tileSize);

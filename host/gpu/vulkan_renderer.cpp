@@ -58,6 +58,9 @@ std::vector<glm::uvec4> fourPerTexel(const std::vector<std::uint32_t>& values) {
 
 Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, const VulkanRenderOptions& options,
                    RenderStats& stats) {
+    if (scene.triangles.size() > gpu::kMaxTriangles)
+        throw InputError("the scene has " + std::to_string(scene.triangles.size()) +
+                         " triangles; the Vulkan backend traces at most " + std::to_string(gpu::kMaxTriangles));
     stats.backend = "vulkan";
     stats.device = device.name();
     stats.features = analyseScene(scene);

@@ -33,6 +33,8 @@ struct BvhNode {
 VITRUM_CONST uint kInteriorNodeFlag = 0x80000000u;
 VITRUM_CONST uint kMaxLeafTriangles = 8u;
 VITRUM_CONST uint kTraversalStackSize = 64u;
+// The GPU's traversal stack entries hold a leaf's first triangle in 27 bits (shaders/bvh.glsl).
+VITRUM_CONST uint kMaxTriangles = (1u << 27) - 1u;
 
 // ---- Triangles (in BVH leaf order) -----------------------------------------------------------
 // Positions for intersection. v0.w = material index bits, v1.w = object index bits (the closed
