@@ -69,8 +69,8 @@ InputError bufferTooLarge(const VulkanDevice& device, const std::string& what, V
 
 // A uniform texel buffer of R32G32B32A32_UINT texels (a usamplerBuffer in GLSL) holding `data`,
 // whose size must be a multiple of 16 bytes. On lavapipe a texel fetch is a vector gather, while
-// every storage-buffer access is a loop over the lanes: the BVH and the triangles are read this
-// way. Checks the size against the device's maxTexelBufferElements first.
+// every storage-buffer access is a loop over the lanes: the scene's geometry, materials and
+// lights are read this way. Checks the size against the device's maxTexelBufferElements first.
 template <class T>
 GpuBuffer makeTexelBuffer(const VulkanDevice& device, std::span<const T> data, const std::string& what) {
     static_assert(sizeof(T) % 16 == 0, "texel buffers hold whole uvec4 texels");
