@@ -1,49 +1,12 @@
-// Ray/triangle and ray/box tests and a resumable BVH traversal over the flattened nodes of
-// shared/gpu_types.h. The traversal's state is kept in the global `st` (see trace.comp) so that a
-// dispatch can stop after any step and the next one resume it.
+// The ray/box test and a resumable BVH traversal over the flattened nodes of shared/gpu_types.h.
+// The traversal's state is kept in the global `st` and its stack in gStack (see trace.comp), so
+// that a dispatch can stop after any step and the next one resume it.
 #ifndef VITRUM_BVH_GLSL
 #define VITRUM_BVH_GLSL
 
 const uint kNoTriangle = 0xFFFFFFFFu;
 
-// Woop, Benthin and Wald, "Watertight Ray/Triangle Intersection" (JCGT 2013), without back-face
-// culling; the same arithmetic in the same order as host/bvh/bvh_traversal.cpp, which says why it
-// is watertight. Returns (t, u, v), u and v the barycentrics of v1 and v2, with t = -1 on a miss;
-// both sides of the triangle are hit.
-vec3 intersectTriangle(TriangleVertices tri, vec3 origin, vec3 direction) {
-    vec3 d = direction;
-    int kz = 0;
-    if (abs(d.y) > abs(d[kz])) kz = 1;
-    if (abs(d.z) > abs(d[kz])) kz = 2;
-    int kx = kz == 2 ? 0 : kz + 1;
-    int ky = kx == 2 ? 0 : kx + 1;
-    if (d[kz] < 0.0) {
-        int swapped = kx;
-        kx = ky;
-        ky = swapped;
-    }
-    float sz = 1.0 / d[kz];
-    float sx = d[kx] * sz;
-    float sy = d[ky] * sz;
-    vec3 a = tri.v0.xyz - origin;
-    vec3 b = tri.v1.xyz - origin;
-    vec3 c = tri.v2.xyz - origin;
-    float ax = a[kx] - sx * a[kz];
-    float ay = a[ky] - sy * a[kz];
-    float bx = b[kx] - sx * b[kz];
-    float by = b[ky] - sy * b[kz];
-    float cx = c[kx] - sx * c[kz];
-    float cy = c[ky] - sy * c[kz];
-    float u0 = cx * by - cy * bx;
-    float u1 = ax * cy - ay * cx;
-    float u2 = bx * ay - by * ax;
-    if ((u0 < 0.0 || u1 < 0.0 || u2 < 0.0) && (u0 > 0.0 || u1 > 0.0 || u2 > 0.0)) return vec3(-1.0);
-    float det = u0 + u1 + u2;
-    if (det == 0.0) return vec3(-1.0);
-    float scaledT = u0 * (sz * a[kz]) + u1 * (sz * b[kz]) + u2 * (sz * c[kz]);
-    float invDet = 1.0 / det;
-    return vec3(scaledT * invDet, u1 * invDet, u2 * invDet);
-}
+#include "triangle_test.glsl"
 
 // Slab test against (tMin, tMax) (Kay and Kajiya), as host/bvh/bvh_traversal.cpp does it: an axis
 // whose slab distance is NaN (0 * inf: the ray runs in the plane of a face) does not constrain

@@ -4,8 +4,8 @@
 // lavapipe silently ends a shader's loops after 65,535 iterations. So every loop iteration of
 // this kernel is one small counted step (one BVH node, one leaf, one triangle, or one round of
 // shading, see main). A dispatch runs at most `params.counts.w` steps per pixel;
-// a pixel that is not done keeps its whole state (its ray tree included) in `states[]`, and the
-// host dispatches again until every pixel of the tile is done. Nothing recurses.
+// a pixel that is not done keeps its whole state in `states[]`, `pendingRays[]` (its ray tree)
+// and `traversalStacks[]`, and the host dispatches again until every pixel of the tile is done. Nothing recurses.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/gpu_types.h"

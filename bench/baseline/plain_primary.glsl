@@ -7,6 +7,9 @@
 // PLAIN_TEXEL_BUFFERS: the same kernel reading nodes and triangles through uniform texel buffers
 // (usamplerBuffer) instead of storage buffers.
 
+#include "../../shaders/shared/gpu_types.h"     // TriangleVertices
+#include "../../shaders/triangle_test.glsl"     // the watertight test vitrum uses
+
 layout(local_size_x = 8, local_size_y = 8) in;
 
 // Node: the boxes of children 0 and 1 and their links. A link >= 0 is an inner node's index; a
@@ -18,11 +21,6 @@ struct PlainNode {
     vec4 hi1;
     ivec4 links;   // x: child 0, y: child 1, z: child 0 count, w: child 1 count (leaves)
 };
-struct Triangle {
-    vec4 v0;
-    vec4 v1;
-    vec4 v2;
-};
 struct Camera {
     vec4 origin;      // xyz; w: image width (float)
     vec4 lowerLeft;   // xyz: direction to the top-left pixel's corner; w: image height
@@ -33,7 +31,7 @@ struct Camera {
 
 #ifdef PLAIN_TEXEL_BUFFERS
 layout(binding = 0) uniform usamplerBuffer nodeTexels;      // 5 texels a PlainNode
-layout(binding = 1) uniform usamplerBuffer triangleTexels;  // 3 texels a Triangle
+layout(binding = 1) uniform usamplerBuffer triangleTexels;  // 3 texels a TriangleVertices
 PlainNode loadNode(int i) {
     PlainNode n;
     n.lo0 = uintBitsToFloat(texelFetch(nodeTexels, 5 * i));
@@ -43,8 +41,8 @@ PlainNode loadNode(int i) {
     n.links = ivec4(texelFetch(nodeTexels, 5 * i + 4));
     return n;
 }
-Triangle loadTriangle(int i) {
-    Triangle t;
+TriangleVertices loadTriangle(int i) {
+    TriangleVertices t;
     t.v0 = uintBitsToFloat(texelFetch(triangleTexels, 3 * i));
     t.v1 = uintBitsToFloat(texelFetch(triangleTexels, 3 * i + 1));
     t.v2 = uintBitsToFloat(texelFetch(triangleTexels, 3 * i + 2));
@@ -52,42 +50,12 @@ Triangle loadTriangle(int i) {
 }
 #else
 layout(std430, binding = 0) readonly buffer Nodes { PlainNode nodes[]; };
-layout(std430, binding = 1) readonly buffer Triangles { Triangle triangles[]; };
+layout(std430, binding = 1) readonly buffer Triangles { TriangleVertices triangles[]; };
 PlainNode loadNode(int i) { return nodes[i]; }
-Triangle loadTriangle(int i) { return triangles[i]; }
+TriangleVertices loadTriangle(int i) { return triangles[i]; }
 #endif
 layout(std430, binding = 2) readonly buffer Cameras { Camera camera; };
 layout(std430, binding = 3) writeonly buffer Hits { vec2 hits[]; };  // x: t (-1 on a miss), y: triangle bits
-
-vec3 intersectTriangle(Triangle tri, vec3 origin, vec3 d) {
-    int kz = 0;
-    if (abs(d.y) > abs(d[kz])) kz = 1;
-    if (abs(d.z) > abs(d[kz])) kz = 2;
-    int kx = kz == 2 ? 0 : kz + 1;
-    int ky = kx == 2 ? 0 : kx + 1;
-    if (d[kz] < 0.0) {
-        int s = kx;
-        kx = ky;
-        ky = s;
-    }
-    float sz = 1.0 / d[kz];
-    float sx = d[kx] * sz;
-    float sy = d[ky] * sz;
-    vec3 a = tri.v0.xyz - origin;
-    vec3 b = tri.v1.xyz - origin;
-    vec3 c = tri.v2.xyz - origin;
-    float ax = a[kx] - sx * a[kz], ay = a[ky] - sy * a[kz];
-    float bx = b[kx] - sx * b[kz], by = b[ky] - sy * b[kz];
-    float cx = c[kx] - sx * c[kz], cy = c[ky] - sy * c[kz];
-    float u0 = cx * by - cy * bx;
-    float u1 = ax * cy - ay * cx;
-    float u2 = bx * ay - by * ax;
-    if ((u0 < 0.0 || u1 < 0.0 || u2 < 0.0) && (u0 > 0.0 || u1 > 0.0 || u2 > 0.0)) return vec3(-1.0);
-    float det = u0 + u1 + u2;
-    if (det == 0.0) return vec3(-1.0);
-    float t = (u0 * (sz * a[kz]) + u1 * (sz * b[kz]) + u2 * (sz * c[kz])) / det;
-    return vec3(t, u1 / det, u2 / det);
-}
 
 // Entry distance of the ray into the box, or 1e30 when it misses it before tMax.
 float boxEntry(vec3 lo, vec3 hi, vec3 originTimesInverse, vec3 inverse, float tMax) {

@@ -11,6 +11,12 @@ static_assert(sizeof(GpuMaterial) == 64);
 static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(GpuLight) == 32);
 static_assert(sizeof(RenderParams) == 192);
+static_assert(sizeof(BvhNode) == 16 * kBvhNodeTexels);
+static_assert(sizeof(TriangleVertices) == 16 * kTriangleVerticesTexels);
+static_assert(sizeof(TriangleShading) == 16 * kTriangleShadingTexels);
+static_assert(sizeof(GpuMaterial) == 16 * kGpuMaterialTexels);
+static_assert(sizeof(GpuLight) == 16 * kGpuLightTexels);
+static_assert(kObjectMaterialsPerTexel * sizeof(std::uint32_t) == 16);
 }  // namespace vitrum::gpu
 
 namespace vitrum::gpu {

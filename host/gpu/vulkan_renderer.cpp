@@ -47,10 +47,12 @@ void addCounters(RenderStats& stats, const std::uint32_t* counters) {
     stats.touchingProbes += counters[gpu::kStatTouchingProbes];
 }
 
-// Four uints a texel, zero-padded: the layout shaders/bindings.glsl's objectMaterial() reads.
-std::vector<glm::uvec4> fourPerTexel(const std::vector<std::uint32_t>& values) {
-    std::vector<glm::uvec4> texels((values.size() + 3) / 4, glm::uvec4(0u));
-    for (std::size_t i = 0; i < values.size(); ++i) texels[i / 4][i % 4] = values[i];
+// kObjectMaterialsPerTexel uints a texel, zero-padded: the layout bindings.glsl's objectMaterial() reads.
+std::vector<glm::uvec4> objectMaterialTexels(const std::vector<std::uint32_t>& values) {
+    std::vector<glm::uvec4> texels((values.size() + gpu::kObjectMaterialsPerTexel - 1) / gpu::kObjectMaterialsPerTexel,
+                                   glm::uvec4(0u));
+    for (std::size_t i = 0; i < values.size(); ++i)
+        texels[i / gpu::kObjectMaterialsPerTexel][i % gpu::kObjectMaterialsPerTexel] = values[i];
     return texels;
 }
 
@@ -84,8 +86,8 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     GpuBuffer lights = makeTexelBuffer(device, spanOf(packed.lights), "lights");
     GpuBuffer textures = makeStorageBuffer(device, spanOf(packed.textures), "texture table");
     GpuBuffer texels = makeStorageBuffer(device, spanOf(packed.texels), "texture texels");
-    const std::vector<glm::uvec4> objectMaterialTexels = fourPerTexel(packed.objectMaterials);
-    GpuBuffer objectMaterials = makeTexelBuffer(device, spanOf(objectMaterialTexels), "object media");
+    const std::vector<glm::uvec4> mediaTexels = objectMaterialTexels(packed.objectMaterials);
+    GpuBuffer objectMaterials = makeTexelBuffer(device, spanOf(mediaTexels), "object media");
     GpuBuffer pixels(device, std::max<VkDeviceSize>(VkDeviceSize(width) * height * sizeof(glm::vec4), 16),
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "image");
     const VkDeviceSize tilePixels = VkDeviceSize(tileWidth) * tileHeight;

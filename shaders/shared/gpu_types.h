@@ -95,6 +95,17 @@ VITRUM_CONST uint kFresnelSchlick = 0u;
 VITRUM_CONST uint kFresnelExact = 1u;
 VITRUM_CONST uint kFresnelSchlickExp2 = 2u;
 
+// ---- Texel buffers -------------------------------------------------------------------------------
+// The scene's read-only data are bound as uniform texel buffers of 16-byte uvec4 texels
+// (shaders/bindings.glsl): a struct is this many consecutive texels (gpu_layout.h checks them
+// against the struct sizes). Object media are four uints a texel.
+VITRUM_CONST uint kBvhNodeTexels = 2u;
+VITRUM_CONST uint kTriangleVerticesTexels = 3u;
+VITRUM_CONST uint kTriangleShadingTexels = 5u;
+VITRUM_CONST uint kGpuMaterialTexels = 4u;
+VITRUM_CONST uint kGpuLightTexels = 2u;
+VITRUM_CONST uint kObjectMaterialsPerTexel = 4u;
+
 // ---- Per-render parameters (uniform buffer) ---------------------------------------------------
 // The pinhole camera of docs/render-model.md: a sample at image position (sx, sy) has direction
 // normalize((sx - width/2) * cameraX + (height/2 - sy) * cameraY - focalLength * cameraZ).
