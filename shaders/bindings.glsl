@@ -3,9 +3,9 @@
 #ifndef VITRUM_BINDINGS_GLSL
 #define VITRUM_BINDINGS_GLSL
 
-layout(std140, set = 0, binding = 0) uniform Params { RenderParams params; };
+layout(set = 0, binding = 0) uniform usamplerBuffer paramTexels;  // one RenderParams
 // The scene's geometry, materials, lights and object media are uniform texel buffers of uvec4
-// texels (gpu_types.h: kBvhNodeTexels and the others), read with texelFetch: on lavapipe a fetch
+// texels (gpu_types.h: kTraversalNodeTexels and the others), read with texelFetch: on lavapipe a fetch
 // is a vector gather, while every storage-buffer access is a loop over the 8 lanes (it made the
 // plain baseline kernel 2x faster, docs/performance.md).
 layout(set = 0, binding = 1) uniform usamplerBuffer nodeTexels;
@@ -25,15 +25,33 @@ layout(std430, set = 0, binding = 13) buffer TraversalStacks { uint traversalSta
 // Texel k of the struct at `first`.
 vec4 fetchVec4(usamplerBuffer texels, uint first, uint k) { return uintBitsToFloat(texelFetch(texels, int(first + k))); }
 
-BvhNode loadNode(uint i) {
-    uint first = kBvhNodeTexels * i;
-    return BvhNode(fetchVec4(nodeTexels, first, 0u), fetchVec4(nodeTexels, first, 1u));
+// The render parameters, read once at the start of main(). Not a uniform buffer: lavapipe
+// recompiles a kernel for the values of uniforms that decide branches ("inlining") at every
+// dispatch, several ms each for this kernel, and a kernel without a cache over half a second.
+RenderParams params;
+
+RenderParams loadRenderParams() {
+    RenderParams p;
+    p.cameraFrom = fetchVec4(paramTexels, 0u, 0u);
+    p.cameraX = fetchVec4(paramTexels, 0u, 1u);
+    p.cameraY = fetchVec4(paramTexels, 0u, 2u);
+    p.cameraZ = fetchVec4(paramTexels, 0u, 3u);
+    p.background = fetchVec4(paramTexels, 0u, 4u);
+    p.image = texelFetch(paramTexels, 5);
+    p.counts = texelFetch(paramTexels, 6);
+    p.tile = texelFetch(paramTexels, 7);
+    p.pass = texelFetch(paramTexels, 8);
+    p.tuning = fetchVec4(paramTexels, 0u, 9u);
+    p.environment = texelFetch(paramTexels, 10);
+    p.offsets = fetchVec4(paramTexels, 0u, 11u);
+    p.bvh = texelFetch(paramTexels, 12);
+    return p;
 }
 
-// A node's (boundsMin.w, boundsMax.w) as uints: its links, without its box.
-uvec2 loadNodeLinks(uint i) {
-    int first = int(kBvhNodeTexels * i);
-    return uvec2(texelFetch(nodeTexels, first).w, texelFetch(nodeTexels, first + 1).w);
+TraversalNode loadTraversalNode(uint i) {
+    uint first = kTraversalNodeTexels * i;
+    return TraversalNode(fetchVec4(nodeTexels, first, 0u), fetchVec4(nodeTexels, first, 1u),
+                         fetchVec4(nodeTexels, first, 2u), fetchVec4(nodeTexels, first, 3u));
 }
 
 TriangleVertices loadTriangle(uint i) {

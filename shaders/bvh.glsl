@@ -28,23 +28,16 @@ const uint kTraverseClosest = 0u;  // the closest hit
 const uint kTraverseAny = 1u;      // any hit (shadow rays)
 const uint kTraverseTouching = 2u; // every glass surface of another object (see onTouchingHit)
 
-// A traversal stack entry is a node whose box the ray entered: an interior node's index, or a
-// leaf's triangle range, so that popping a leaf reads no node: 27 bits of first triangle and 4 of
-// count. The host refuses scenes of 2^27 triangles or more (gpu::kMaxTriangles).
-const uint kLeafEntryFlag = 0x80000000u;
+// A traversal stack entry is a node whose box the ray entered, as gpu_types.h's TraversalNode
+// writes its children: an interior node's index, or a leaf's triangle range (kLeafEntryFlag), so
+// that popping a leaf reads no node.
 const uint kNoEntry = 0xFFFFFFFFu;
 
 // A fresh traversal: its stack holds only the root, which traverse() takes without a push.
 const uint kFreshTraversal = 0xFFFFFFFFu;
 
-uint stackEntry(uint index, BvhNode node) {
-    uint meta = floatBitsToUint(node.boundsMax.w);
-    uint link = floatBitsToUint(node.boundsMin.w);
-    return (meta & kInteriorNodeFlag) != 0u ? index : kLeafEntryFlag | (link << 4) | meta;
-}
-
 // Starts a traversal of the ray origin + t direction, tMin < t < tMax. The root is entered
-// without testing its box: its children's boxes are tested.
+// without testing its box: its children's boxes are tested (or, for a one-leaf tree, its triangles).
 void beginTraversal(vec3 origin, vec3 direction, float tMin, float tMax) {
     st.traceOrigin = vec4(origin, tMin);
     st.traceDirection = vec4(direction, tMax);
@@ -56,21 +49,19 @@ void beginTraversal(vec3 origin, vec3 direction, float tMin, float tMax) {
 // `current` (kNoEntry when neither is hit) and pushes the farther one when both are.
 void visitInteriorNode(inout uint current, inout uint top, vec3 origin, vec3 direction, vec3 inverseDirection,
                        float tMin, float tMax) {
-    uvec2 links = loadNodeLinks(current);  // the children's boxes are all we need of this node
-    uint second = links.x;
-    uint meta = links.y;
-    // Near child (on the ray's side of the split) and far child.
-    bool negative = direction[meta & 3u] < 0.0;
-    uint nearIndex = negative ? second : current + 1u;
-    uint farIndex = negative ? current + 1u : second;
-    BvhNode nearNode = loadNode(nearIndex);
-    BvhNode farNode = loadNode(farIndex);
+    TraversalNode node = loadTraversalNode(current);
     gNodeVisits += 2u;
-    bool hitNear = hitsBox(nearNode.boundsMin.xyz, nearNode.boundsMax.xyz, origin, inverseDirection, tMin, tMax);
-    bool hitFar = hitsBox(farNode.boundsMin.xyz, farNode.boundsMax.xyz, origin, inverseDirection, tMin, tMax);
-    current = hitNear ? stackEntry(nearIndex, nearNode) : kNoEntry;
+    bool hit0 = hitsBox(node.min0.xyz, node.max0.xyz, origin, inverseDirection, tMin, tMax);
+    bool hit1 = hitsBox(node.min1.xyz, node.max1.xyz, origin, inverseDirection, tMin, tMax);
+    // Near child (on the ray's side of the split) and far child.
+    bool negative = direction[floatBitsToUint(node.max0.w)] < 0.0;
+    bool hitNear = negative ? hit1 : hit0;
+    bool hitFar = negative ? hit0 : hit1;
+    uint entry0 = floatBitsToUint(node.min0.w);
+    uint entry1 = floatBitsToUint(node.min1.w);
+    current = hitNear ? (negative ? entry1 : entry0) : kNoEntry;
     if (!hitFar) return;
-    uint farEntry = stackEntry(farIndex, farNode);
+    uint farEntry = negative ? entry0 : entry1;
     if (!hitNear) {
         current = farEntry;
     } else if (top + 2u > kTraversalStackSize) {
@@ -107,7 +98,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
     uint current = kNoEntry;  // the entry to visit next, taken off the stack or kept from a visit
     if (top == kFreshTraversal) {
         top = 0u;
-        current = stackEntry(0u, loadNode(0u));
+        current = params.bvh.x;
     }
     bool over = false;
     // Aila and Laine's "while-while": inner nodes until every lane of the SIMD group holds a leaf

@@ -426,6 +426,7 @@ void addStat(uint index, uint value) {
 }
 
 void main() {
+    params = loadRenderParams();
     uvec2 local = gl_GlobalInvocationID.xy;
     uvec2 pixel = params.tile.xy + local;
     if (local.x >= params.tile.z || local.y >= params.tile.w || pixel.x >= params.image.x || pixel.y >= params.image.y)

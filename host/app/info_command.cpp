@@ -80,7 +80,7 @@ int infoCommand(int argc, char** argv, int first) {
     std::printf("bvh: %u nodes, %u leaves, depth %u, at most %u triangles a leaf, SAH cost %.2f, built in %.3f s\n",
                 s.nodeCount, s.leafCount, s.maxDepth, s.maxLeafTriangles, s.sahCost, s.buildSeconds);
     std::printf("gpu memory: %.1f bytes per triangle (BVH, vertices, shading)\n",
-                double(bvh.nodes.size() * sizeof(gpu::BvhNode) +
+                double((bvh.stats.nodeCount - bvh.stats.leafCount) * sizeof(gpu::TraversalNode) +
                        scene.triangles.size() * (sizeof(gpu::TriangleVertices) + sizeof(gpu::TriangleShading))) /
                     double(std::max<std::size_t>(1, scene.triangles.size())));
     return 0;

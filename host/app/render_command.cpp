@@ -204,7 +204,7 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         VkDeviceSize bytes;
         BufferKind kind;
     } buffers[] = {
-        {"BVH nodes", 2 * triangles * sizeof(gpu::BvhNode), kTexel},
+        {"BVH nodes", triangles * sizeof(gpu::TraversalNode), kTexel},  // at most triangles - 1 interior nodes
         {"triangle vertices", triangles * sizeof(gpu::TriangleVertices), kTexel},
         {"triangle normals and uvs", triangles * sizeof(gpu::TriangleShading), kTexel},
         {"materials", scene.materials.size() * sizeof(gpu::GpuMaterial), kTexel},

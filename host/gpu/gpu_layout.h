@@ -5,13 +5,15 @@
 
 namespace vitrum::gpu {
 static_assert(sizeof(BvhNode) == 32);
+static_assert(sizeof(TraversalNode) == 64);
 static_assert(sizeof(TriangleVertices) == 48);
 static_assert(sizeof(TriangleShading) == 80);
 static_assert(sizeof(GpuMaterial) == 64);
 static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(GpuLight) == 32);
-static_assert(sizeof(RenderParams) == 192);
-static_assert(sizeof(BvhNode) == 16 * kBvhNodeTexels);
+static_assert(sizeof(RenderParams) == 208);
+static_assert(sizeof(TraversalNode) == 16 * kTraversalNodeTexels);
+static_assert(sizeof(RenderParams) == 16 * kRenderParamsTexels, "bindings.glsl's loadRenderParams reads every field");
 static_assert(sizeof(TriangleVertices) == 16 * kTriangleVerticesTexels);
 static_assert(sizeof(TriangleShading) == 16 * kTriangleShadingTexels);
 static_assert(sizeof(GpuMaterial) == 16 * kGpuMaterialTexels);

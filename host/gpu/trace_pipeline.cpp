@@ -7,8 +7,7 @@ namespace vitrum {
 ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization) {
     std::array<VkDescriptorType, kTraceBindingCount> bindings;
     bindings.fill(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-    bindings[kBindingParams] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    for (TraceBinding texels : {kBindingNodes, kBindingVertices, kBindingShading, kBindingMaterials, kBindingLights,
+    for (TraceBinding texels : {kBindingParams, kBindingNodes, kBindingVertices, kBindingShading, kBindingMaterials, kBindingLights,
                                 kBindingObjectMaterials})
         bindings[texels] = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     const auto constants = specialization.constants();

@@ -78,8 +78,9 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     const std::uint32_t tileWidth = std::min(tileSize, width);
     const std::uint32_t tileHeight = std::min(tileSize, height);
 
-    GpuBuffer params(device, sizeof(gpu::RenderParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "render parameters");
-    GpuBuffer nodes = makeTexelBuffer(device, spanOf(packed.nodes), "BVH nodes");
+    const gpu::RenderParams noParams{};
+    GpuBuffer params = makeTexelBuffer(device, std::span<const gpu::RenderParams>(&noParams, 1), "render parameters");
+    GpuBuffer nodes = makeTexelBuffer(device, spanOf(packed.bvh.nodes), "BVH nodes");
     GpuBuffer vertices = makeTexelBuffer(device, spanOf(packed.vertices), "triangle vertices");
     GpuBuffer shading = makeTexelBuffer(device, spanOf(packed.shading), "triangle normals and uvs");
     GpuBuffer materials = makeTexelBuffer(device, spanOf(packed.materials), "materials");
@@ -111,7 +112,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     pipeline.bind(bound);
     stats.addPhase("pipeline", secondsSince(start));
 
-    gpu::RenderParams p = makeRenderParams(scene);
+    gpu::RenderParams p = makeRenderParams(scene, packed.bvh.rootEntry);
     p.counts.w = options.iterationBudget;
     // Surfaces of different glass objects closer than this touch (the CPU reference's distance too).
     p.tuning.y = float(stats.features.touchingDistance);

@@ -19,7 +19,7 @@ float bits(std::uint32_t value) { return std::bit_cast<float>(value); }
 
 PackedScene packScene(const Scene& scene, const Bvh& bvh) {
     PackedScene packed;
-    packed.nodes = bvh.nodes;
+    packed.bvh = makeTraversalNodes(bvh.nodes);
     packed.vertices = packTriangleVertices(bvh, scene.triangles);
     packed.shading.reserve(bvh.triangleOrder.size());
     for (std::uint32_t index : bvh.triangleOrder) {
@@ -67,7 +67,7 @@ std::uint32_t sampleGridColumns(std::uint32_t n) {
     return columns;
 }
 
-gpu::RenderParams makeRenderParams(const Scene& scene) {
+gpu::RenderParams makeRenderParams(const Scene& scene, std::uint32_t rootEntry) {
     const Camera& camera = scene.camera;
     glm::vec3 z = glm::normalize(camera.from - camera.at);
     glm::vec3 x = glm::normalize(glm::cross(camera.up, z));
@@ -88,6 +88,7 @@ gpu::RenderParams makeRenderParams(const Scene& scene) {
                                std::uint32_t(std::max(scene.background.map, 0)), 0);
     const RayOffsetScale offsets = rayOffsetScale(scene.triangles);  // Waechter and Binder's, scaled to the scene
     p.offsets = glm::vec4(offsets.origin, offsets.absolute, 0.0f, 0.0f);
+    p.bvh = glm::uvec4(rootEntry, 0, 0, 0);
     return p;
 }
 

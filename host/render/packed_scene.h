@@ -6,13 +6,14 @@
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "render/traversal_nodes.h"
 #include "scene/scene.h"
 #include "shared/gpu_types.h"
 
 namespace vitrum {
 
 struct PackedScene {
-    std::vector<gpu::BvhNode> nodes;
+    TraversalNodes bvh;
     std::vector<gpu::TriangleVertices> vertices;
     std::vector<gpu::TriangleShading> shading;
     std::vector<gpu::GpuMaterial> materials;
@@ -26,8 +27,9 @@ struct PackedScene {
 
 PackedScene packScene(const Scene& scene, const Bvh& bvh);
 
-// The camera and settings of `scene` as the kernel reads them; the host fills in tile and pass.
-gpu::RenderParams makeRenderParams(const Scene& scene);
+// The camera and settings of `scene`, and its BVH's root entry (TraversalNodes::rootEntry), as the
+// kernel reads them; the host fills in tile and pass.
+gpu::RenderParams makeRenderParams(const Scene& scene, std::uint32_t rootEntry);
 
 // Columns of the stratified sample grid for n samples: the largest divisor of n that is at most
 // sqrt(n) (so 16 -> 4 x 4, 8 -> 2 x 4, 7 -> 1 x 7).

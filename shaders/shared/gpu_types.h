@@ -32,9 +32,26 @@ struct BvhNode {
 };
 VITRUM_CONST uint kInteriorNodeFlag = 0x80000000u;
 VITRUM_CONST uint kMaxLeafTriangles = 8u;
-VITRUM_CONST uint kTraversalStackSize = 64u;
-// The GPU's traversal stack entries hold a leaf's first triangle in 27 bits (shaders/bvh.glsl).
+
+// The same tree as the GPU traverses it (Aila and Laine, "Understanding the Efficiency of Ray
+// Traversal on GPUs", 2009): only the interior nodes, each holding both children's boxes, so a
+// visit reads one node (4 texels) and tests two boxes. Child 0 is BvhNode's first child, child 1
+// its second; nodes keep the depth-first order of their BvhNodes (host/render/traversal_nodes.h).
+//   min0.xyz, max0.xyz: child 0's box; min0.w (uint bits): child 0's entry
+//   min1.xyz, max1.xyz: child 1's box; min1.w (uint bits): child 1's entry
+//   max0.w (uint bits): the split axis (0, 1, 2); max1.w: 0
+// An entry (also what the traversal stack holds) is an interior child's TraversalNode index, or
+// for a leaf kLeafEntryFlag | first triangle << 4 | triangle count: 27 bits of first triangle,
+// so the host refuses scenes of kMaxTriangles or more.
+struct TraversalNode {
+    vec4 min0;
+    vec4 max0;
+    vec4 min1;
+    vec4 max1;
+};
+VITRUM_CONST uint kLeafEntryFlag = 0x80000000u;
 VITRUM_CONST uint kMaxTriangles = (1u << 27) - 1u;
+VITRUM_CONST uint kTraversalStackSize = 64u;
 
 // ---- Triangles (in BVH leaf order) -----------------------------------------------------------
 // Positions for intersection. v0.w = material index bits, v1.w = object index bits (the closed
@@ -99,14 +116,15 @@ VITRUM_CONST uint kFresnelSchlickExp2 = 2u;
 // The scene's read-only data are bound as uniform texel buffers of 16-byte uvec4 texels
 // (shaders/bindings.glsl): a struct is this many consecutive texels (gpu_layout.h checks them
 // against the struct sizes). Object media are four uints a texel.
-VITRUM_CONST uint kBvhNodeTexels = 2u;
+VITRUM_CONST uint kTraversalNodeTexels = 4u;
+VITRUM_CONST uint kRenderParamsTexels = 13u;
 VITRUM_CONST uint kTriangleVerticesTexels = 3u;
 VITRUM_CONST uint kTriangleShadingTexels = 5u;
 VITRUM_CONST uint kGpuMaterialTexels = 4u;
 VITRUM_CONST uint kGpuLightTexels = 2u;
 VITRUM_CONST uint kObjectMaterialsPerTexel = 4u;
 
-// ---- Per-render parameters (uniform buffer) ---------------------------------------------------
+// ---- Per-render parameters (a texel buffer of kRenderParamsTexels, see bindings.glsl) -----------
 // The pinhole camera of docs/render-model.md: a sample at image position (sx, sy) has direction
 // normalize((sx - width/2) * cameraX + (height/2 - sy) * cameraY - focalLength * cameraZ).
 struct RenderParams {
@@ -127,6 +145,8 @@ struct RenderParams {
                        // the spherical map or of the cube's +x face (then -x, +y, -y, +z, -z)
     vec4 offsets;      // ray-origin offsets (Waechter and Binder) scaled to the scene: x = radius of
                        // the region around the origin where offsets are absolute, y = that offset
+    uvec4 bvh;         // x = the root's entry (see TraversalNode): node 0, or the one leaf of a
+                       // scene of at most kMaxLeafTriangles triangles
 };
 
 // Numbered like vitrum::BackgroundKind and vitrum::TextureFilter.

@@ -292,7 +292,7 @@ TEST(HardCaseSelfIntersection, OffsetConstantsFollowTheSceneExtent) {
     for (Triangle& t : scene.triangles)
         for (glm::vec3& p : t.position) p *= 1e-3f;
     scene.materials.push_back(Material{});
-    const gpu::RenderParams params = makeRenderParams(scene);
+    const gpu::RenderParams params = makeRenderParams(scene, gpu::kLeafEntryFlag);
     EXPECT_EQ(params.offsets.x, rayOffsetScale(scene.triangles).origin);
     EXPECT_EQ(params.offsets.y, rayOffsetScale(scene.triangles).absolute);
 }

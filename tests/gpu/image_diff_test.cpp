@@ -23,6 +23,32 @@ TEST(ImageDiff, GeosphereFromCommandLineCameraMatchesReference) {
     expectImagesMatch(renderBoth(scene));
 }
 
+// The GPU's BVH layout holds interior nodes only (render/traversal_nodes.h): a tree that is one
+// leaf is all in its root entry, and an empty scene's root is a leaf of no triangles.
+TEST(ImageDiff, OneLeafAndEmptyScenesMatchReference) {
+    Scene scene;
+    scene.camera = {.from = {0, -3, 1}, .at = {0, 0, 0}, .up = {0, 0, 1}, .fovY = 50, .width = 64, .height = 48};
+    scene.lights = {{.position = {1, -2, 3}, .colour = glm::vec3(1.0f)}};
+    scene.background.colour = glm::vec3(0.3f, 0.4f, 0.5f);
+    Material m;
+    m.model = MaterialModel::Lambert;
+    scene.materials.push_back(m);
+    Triangle t;
+    t.position[0] = {-1, 0, -1}, t.position[1] = {1, 0, -1}, t.position[2] = {0, 0, 1};
+    t.normal[0] = t.normal[1] = t.normal[2] = glm::vec3(0, -1, 0);
+    scene.triangles.push_back(t);
+    scene.objectNames = {"triangle"};
+    ASSERT_EQ(buildBvh(scene.triangles).nodes.size(), 1u);
+    const RenderPair one = renderBoth(scene);
+    expectImagesMatch(one);
+    EXPECT_EQ(one.gpuStats.rays.primary, 64u * 48u);
+
+    scene.triangles.clear();
+    const RenderPair none = renderBoth(scene);
+    EXPECT_EQ(none.diff.maxAbsError, 0.0);
+    for (const glm::vec3& p : none.gpu.pixels) ASSERT_EQ(p, scene.background.colour);
+}
+
 TEST(ImageDiff, CornellBox2MatchesReference) {
     expectImagesMatch(renderBoth(loadSmall(sourcePath("scenes/course/cornell_box2.json"), 160, 120)));
 }

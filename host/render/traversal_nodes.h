@@ -1,0 +1,20 @@
+// The BVH in the layout the GPU traverses (gpu::TraversalNode, shaders/shared/gpu_types.h): the
+// interior nodes only, each with both children's boxes, in the depth-first order of bvh.nodes.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "shared/gpu_types.h"
+
+namespace vitrum {
+
+struct TraversalNodes {
+    std::vector<gpu::TraversalNode> nodes;  // empty when the whole tree is one leaf
+    std::uint32_t rootEntry = gpu::kLeafEntryFlag;  // node 0, or the root leaf's entry
+};
+
+TraversalNodes makeTraversalNodes(std::span<const gpu::BvhNode> nodes);
+
+}  // namespace vitrum
