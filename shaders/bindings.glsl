@@ -17,7 +17,7 @@ layout(std430, set = 0, binding = 6) readonly buffer Textures { TextureInfo text
 layout(std430, set = 0, binding = 7) readonly buffer Texels { float texels[]; };  // RGB, packed
 layout(set = 0, binding = 8) uniform usamplerBuffer objectMaterialTexels;
 layout(std430, set = 0, binding = 9) writeonly buffer Pixels { vec4 pixels[]; };
-layout(std430, set = 0, binding = 10) buffer States { TraceState states[]; };
+layout(std430, set = 0, binding = 10) buffer States { uvec4 stateTexels[]; };  // TraceStates, see suspend.glsl
 layout(std430, set = 0, binding = 11) buffer Stats { uint stats[]; };
 layout(std430, set = 0, binding = 12) buffer PendingRays { PendingRay pendingRays[]; };  // kPendingRayCapacity a pixel
 layout(std430, set = 0, binding = 13) buffer TraversalStacks { uint traversalStacks[]; };  // kTraversalStackSize a pixel

@@ -3,9 +3,10 @@
 //
 // lavapipe silently ends a shader's loops after 65,535 iterations. So every loop iteration of
 // this kernel is one small counted step (one BVH node, one leaf, one triangle, or one round of
-// shading, see main). A dispatch runs at most `params.counts.w` steps per pixel;
-// a pixel that is not done keeps its whole state in `states[]`, `pendingRays[]` (its ray tree)
-// and `traversalStacks[]`, and the host dispatches again until every pixel of the tile is done. Nothing recurses.
+// shading, see main). A dispatch runs at most `params.counts.w` steps per pixel. The first
+// dispatch of a tile gives up the pixels that are not done by then; the resumable build of this
+// kernel (kResumable) restarts them and keeps their state between its dispatches (suspend.glsl),
+// and the host dispatches it until every pixel of the tile is done. Nothing recurses.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/gpu_types.h"
@@ -14,8 +15,8 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-// The whole state of this pixel; loaded from / stored to states[] only when a pixel is resumed
-// or suspended.
+// The whole state of this pixel; the resumable kernel keeps it in stateTexels[] between its
+// dispatches (suspend.glsl).
 TraceState st;
 
 // Counters of this invocation, added to stats[] once at the end.
@@ -409,17 +410,20 @@ void nextRay() {
     st.control.x = kPhaseTrace;
 }
 
-// Whether the pixel is inside a BVH traversal that has a stack (begun and not fresh).
-bool inTraversal() {
-    uint phase = st.control.x;
-    return (phase == kPhaseTrace || phase == kPhaseShadow || phase == kPhaseTouching) && st.control.w != kFreshTraversal;
-}
-
 // The next sample's primary ray, or the end of the pixel.
 void startSample() {
     if (floatBitsToUint(st.accumulated.w) >= params.image.z) st.control.x = kPhaseDone;
     else startPrimaryRay();  // begins a traversal, or (max_depth 0) goes to kPhaseNextRay
 }
+
+// A pixel's first dispatch.
+void startPixel() {
+    st.accumulated = vec4(0.0, 0.0, 0.0, uintBitsToFloat(0u));
+    st.control = uvec4(kPhaseStartSample, 0u, 0u, 0u);
+    st.traversal.w = 0u;
+}
+
+#include "suspend.glsl"
 
 void addStat(uint index, uint value) {
     if (value != 0u) atomicAdd(stats[index], value);
@@ -434,17 +438,8 @@ void main() {
     uint slot = local.y * params.tile.z + local.x;
     pendingBase = slot * kPendingRayCapacity;
     stackBase = slot * kTraversalStackSize;
-    if (params.pass.x == 1u) {
-        st.accumulated = vec4(0.0, 0.0, 0.0, uintBitsToFloat(0u));
-        st.control = uvec4(kPhaseStartSample, 0u, 0u, 0u);
-        st.traversal.w = 0u;
-    } else {
-        if (states[slot].control.x == kPhaseDone) return;
-        st = states[slot];
-        if (inTraversal()) {
-            for (uint i = 0u; i < st.control.w; ++i) gStack[i] = traversalStacks[stackBase + i];
-        }
-    }
+    if (!kResumable) startPixel();
+    else if (!resumeState(slot)) return;
 
     // lavapipe runs 8 invocations in lock step and executes both sides of every branch under a
     // mask, so a loop iteration costs its whole body, whatever phase each pixel is in. One
@@ -475,20 +470,25 @@ void main() {
     }
 
     st.traversal.w += steps;
-    if (st.control.x == kPhaseDone) {
+    bool done = st.control.x == kPhaseDone;
+    if (done) {
         atomicMax(stats[kStatMaxPixelSteps], st.traversal.w);
         pixels[pixel.y * params.image.x + pixel.x] = vec4(st.accumulated.xyz / float(params.image.z), 1.0);
-        // Later dispatches of this tile must skip the pixel (its slot may hold another tile's state).
-        states[slot].control.x = kPhaseDone;
     } else {
-        // Out of budget: keep everything for the next dispatch. A loop that stopped short of both
-        // the end and the budget was stopped by the driver: count it, never hide it.
+        // Out of budget: the next dispatch resumes (or restarts) the pixel. A loop that stopped
+        // short of both the end and the budget was stopped by the driver: count it, never hide it.
         if (steps < budget) atomicAdd(stats[kStatLoopLimitSuspected], 1u);
-        states[slot] = st;
-        if (inTraversal()) {
-            for (uint i = 0u; i < st.control.w; ++i) traversalStacks[stackBase + i] = gStack[i];
-        }
         atomicAdd(stats[kStatUnfinishedPixels], 1u);
+    }
+    if (kResumable) {
+        suspendState(slot, !done);
+    } else {
+        markSlot(slot, done);
+        // A pixel given up is traced again from its start: what it counted so far would count twice.
+        if (!done) {
+            atomicAdd(stats[kStatRestartedSteps], steps);
+            return;
+        }
     }
     addStat(kStatTraversalSteps, steps);
     addStat(kStatPrimaryRays, gPrimaryRays);

@@ -294,6 +294,9 @@ int renderCommand(int argc, char** argv, int first) {
         std::printf("kernel: %s (medium stack %u, pending rays %u), compiled in %.3f s\n",
                     stats.kernel->specialized ? "specialized for the scene" : "general", stats.kernel->mediumStackDepth,
                     stats.kernel->pendingRayCapacity, stats.seconds("pipeline") + stats.seconds("compile"));
+    if (stats.restartedPixels > 0)
+        std::printf("resumable kernel: %llu pixels needed more than one dispatch, restarted (%.3f s to build it)\n",
+                    (unsigned long long)stats.restartedPixels, stats.seconds("resumable kernel"));
     std::printf("time: %.3f s rendering, %.3f s in all\n", renderSeconds, totalSeconds);
     std::printf("rays: %llu (%.2f Mrays/s): %llu primary, %llu shadow, %llu reflection, %llu refraction\n",
                 (unsigned long long)stats.rays.total(),

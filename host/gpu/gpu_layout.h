@@ -24,5 +24,6 @@ static_assert(kObjectMaterialsPerTexel * sizeof(std::uint32_t) == 16);
 namespace vitrum::gpu {
 static_assert(sizeof(PendingRay) == 64);
 static_assert(sizeof(TraceState) == 64 + 12 * 16);
+static_assert(sizeof(TraceState) == 16 * kTraceStateTexels, "shaders/suspend.glsl copies every member");
 static_assert(kMaxMediumDepth == 4, "trace.comp's medium stack code is unrolled for 4 entries");
 }  // namespace vitrum::gpu

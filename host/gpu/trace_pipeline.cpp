@@ -1,16 +1,22 @@
 #include "gpu/trace_pipeline.h"
 
+#include <algorithm>
+
 #include "trace.spv.h"
 
 namespace vitrum {
 
-ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization) {
+ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization,
+                                  bool resumable) {
     std::array<VkDescriptorType, kTraceBindingCount> bindings;
     bindings.fill(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     for (TraceBinding texels : {kBindingParams, kBindingNodes, kBindingVertices, kBindingShading, kBindingMaterials, kBindingLights,
                                 kBindingObjectMaterials})
         bindings[texels] = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-    const auto constants = specialization.constants();
+    const auto sceneConstants = specialization.constants();
+    std::array<std::uint32_t, sceneConstants.size() + 1> constants;  // then kResumable (constant_id 10)
+    std::copy(sceneConstants.begin(), sceneConstants.end(), constants.begin());
+    constants.back() = resumable ? 1u : 0u;
     std::array<VkSpecializationMapEntry, constants.size()> entries;
     for (std::uint32_t id = 0; id < entries.size(); ++id)
         entries[id] = {.constantID = id, .offset = id * std::uint32_t(sizeof(std::uint32_t)), .size = sizeof(std::uint32_t)};

@@ -29,6 +29,9 @@ enum TraceBinding : std::uint32_t {
 
 constexpr std::uint32_t kTraceGroupSize = 8;  // local_size_x = local_size_y in trace.comp
 
-ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization);
+// The first dispatch of every tile runs the kernel built with `resumable` false; the pixels it
+// gives up are restarted by the resumable one (shaders/suspend.glsl).
+ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization,
+                                  bool resumable);
 
 }  // namespace vitrum

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <optional>
 
 #include "gpu/gpu_buffer.h"
 #include "gpu/gpu_layout.h"
@@ -45,6 +46,7 @@ void addCounters(RenderStats& stats, const std::uint32_t* counters) {
     stats.maxMediumDepth = std::max<std::uint64_t>(stats.maxMediumDepth, counters[gpu::kStatMaxMediumDepth]);
     stats.maxPixelLoopSteps = std::max<std::uint64_t>(stats.maxPixelLoopSteps, counters[gpu::kStatMaxPixelSteps]);
     stats.touchingProbes += counters[gpu::kStatTouchingProbes];
+    stats.restartedSteps += counters[gpu::kStatRestartedSteps];
 }
 
 // kObjectMaterialsPerTexel uints a texel, zero-padded: the layout bindings.glsl's objectMaterial() reads.
@@ -105,11 +107,11 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     stats.addPhase("upload", secondsSince(start));
 
     start = Clock::now();
-    ComputePipeline pipeline = makeTracePipeline(device, kernel);
-    std::array<const GpuBuffer*, kTraceBindingCount> bound{
+    const std::array<const GpuBuffer*, kTraceBindingCount> bound{
         &params, &nodes, &vertices, &shading, &materials, &lights, &textures,
         &texels, &objectMaterials, &pixels, &states, &counters, &pendingRays, &traversalStacks};
-    pipeline.bind(bound);
+    ComputePipeline firstPass = makeTracePipeline(device, kernel, false);
+    firstPass.bind(bound);
     stats.addPhase("pipeline", secondsSince(start));
 
     gpu::RenderParams p = makeRenderParams(scene, packed.bvh.rootEntry);
@@ -126,33 +128,49 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     const std::uint32_t groupsY = (tileHeight + kTraceGroupSize - 1) / kTraceGroupSize;
     auto* counterValues = counters.as<std::uint32_t>();
 
-    // lavapipe compiles the kernel at its first dispatch: one that traces nothing (an empty tile)
+    // lavapipe compiles a kernel at its first dispatch: one that traces nothing (an empty tile)
     // measures the compile time alone.
-    start = Clock::now();
-    p.tile = glm::uvec4(0u);
-    p.pass.x = 1;
-    std::memcpy(params.mapped(), &p, sizeof(p));
-    device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, 1, 1); });
-    stats.addPhase("compile", secondsSince(start));
+    auto compile = [&](const ComputePipeline& pipeline) {
+        const auto compileStart = Clock::now();
+        p.tile = glm::uvec4(0u);
+        std::memcpy(params.mapped(), &p, sizeof(p));
+        device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, 1, 1); });
+        return secondsSince(compileStart);
+    };
+    stats.addPhase("compile", compile(firstPass));
 
+    // Built when a first dispatch gives up a pixel: most scenes never need it.
+    std::optional<ComputePipeline> resumable;
+    double resumableSeconds = 0;
+    auto dispatch = [&](const ComputePipeline& pipeline) {
+        std::memcpy(params.mapped(), &p, sizeof(p));
+        std::memset(counterValues, 0, gpu::kStatCount * sizeof(std::uint32_t));
+        device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, groupsX, groupsY); });
+        ++stats.dispatches;
+        addCounters(stats, counterValues);
+        return counterValues[gpu::kStatUnfinishedPixels];
+    };
     start = Clock::now();
     for (std::uint32_t ty = 0; ty < tilesY; ++ty) {
         for (std::uint32_t tx = 0; tx < tilesX; ++tx) {
-            p.tile = glm::uvec4(tx * tileWidth, ty * tileHeight, tileWidth, tileHeight);
-            p.pass.x = 1;
-            for (;;) {
-                std::memcpy(params.mapped(), &p, sizeof(p));
-                std::memset(counterValues, 0, gpu::kStatCount * sizeof(std::uint32_t));
-                device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, groupsX, groupsY); });
-                ++stats.dispatches;
-                addCounters(stats, counterValues);
-                if (counterValues[gpu::kStatUnfinishedPixels] == 0) break;
-                p.pass.x = 0;
+            const glm::uvec4 tile(tx * tileWidth, ty * tileHeight, tileWidth, tileHeight);
+            p.tile = tile;
+            const std::uint32_t givenUp = dispatch(firstPass);
+            stats.restartedPixels += givenUp;
+            if (givenUp > 0 && !resumable) {
+                const auto buildStart = Clock::now();
+                resumable.emplace(makeTracePipeline(device, kernel, true));
+                resumable->bind(bound);
+                compile(*resumable);
+                resumableSeconds = secondsSince(buildStart);
+                p.tile = tile;
             }
+            for (std::uint32_t unfinished = givenUp; unfinished > 0;) unfinished = dispatch(*resumable);
             if (options.progress) options.progress(double(ty * tilesX + tx + 1) / double(tilesX * tilesY));
         }
     }
-    stats.addPhase("render", secondsSince(start));
+    stats.addPhase("render", secondsSince(start) - resumableSeconds);
+    if (resumable) stats.addPhase("resumable kernel", resumableSeconds);  // its pipeline and compile
 
     start = Clock::now();
     Image image(width, height);

@@ -40,6 +40,8 @@ nlohmann::json toJson(const RenderStats& stats) {
         {"loop_steps", stats.loopSteps},
         {"max_pixel_loop_steps", stats.maxPixelLoopSteps},
         {"dispatches", stats.dispatches},
+        {"restarted_pixels", stats.restartedPixels},
+        {"restarted_steps", stats.restartedSteps},
         {"node_visits", stats.nodeVisits},
         {"features", toJson(stats.features)},
     };

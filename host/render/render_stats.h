@@ -40,6 +40,8 @@ struct RenderStats {
     RayCounts rays;
     LimitCounts limits;
     std::uint64_t dispatches = 0;
+    std::uint64_t restartedPixels = 0;  // GPU: pixels the first dispatch of their tile gave up
+    std::uint64_t restartedSteps = 0;   // GPU: the loop steps those first attempts spent
     std::uint64_t nodeVisits = 0;
     std::uint64_t totalInternalReflections = 0;
     std::uint64_t absorbedEscapes = 0;

@@ -118,6 +118,7 @@ VITRUM_CONST uint kFresnelSchlickExp2 = 2u;
 // against the struct sizes). Object media are four uints a texel.
 VITRUM_CONST uint kTraversalNodeTexels = 4u;
 VITRUM_CONST uint kRenderParamsTexels = 13u;
+VITRUM_CONST uint kTraceStateTexels = 16u;  // a storage buffer of uvec4s (shaders/suspend.glsl)
 VITRUM_CONST uint kTriangleVerticesTexels = 3u;
 VITRUM_CONST uint kTriangleShadingTexels = 5u;
 VITRUM_CONST uint kGpuMaterialTexels = 4u;
@@ -136,8 +137,7 @@ struct RenderParams {
     uvec4 image;       // width, height, samples per pixel, max depth
     uvec4 counts;      // light count, fresnel model, texture count, iteration budget per dispatch
     uvec4 tile;        // tile origin x, tile origin y, tile width, tile height
-    uvec4 pass;        // x = 1 on the first dispatch of a tile (start fresh), 0 when resuming;
-                       // y = columns of the stratified sample grid (rows = spp / columns)
+    uvec4 pass;        // x: unused; y = columns of the stratified sample grid (rows = spp / columns)
     vec4 tuning;       // x = min weight, y = distance within which surfaces touch (1e-5 x scene
                        // diagonal), z = 1 when the scene has two or more glass objects (so
                        // surfaces of different objects can touch), else 0
@@ -202,6 +202,7 @@ VITRUM_CONST uint kStatShadowRays = 1u;
 VITRUM_CONST uint kStatReflectionRays = 2u;
 VITRUM_CONST uint kStatRefractionRays = 3u;
 VITRUM_CONST uint kStatUnfinishedPixels = 4u;    // pixels of this tile that need another dispatch
+                                                 // (after the first dispatch: pixels to restart)
 VITRUM_CONST uint kStatLoopLimitSuspected = 5u;  // the main loop ended without a reason of ours
 VITRUM_CONST uint kStatTraversalStackOverflow = 6u;
 VITRUM_CONST uint kStatDepthLimitHits = 7u;
@@ -218,7 +219,8 @@ VITRUM_CONST uint kStatMaxMediumDepth = 17u;     // most media one ray was insid
 VITRUM_CONST uint kStatTouchingInterfaces = 18u; // glass hits where other objects' surfaces touch
 VITRUM_CONST uint kStatInconsistentMedia = 19u;  // a ray left an object it was not inside
 VITRUM_CONST uint kStatTouchingProbes = 20u;     // touching probes run (traversals around a glass hit)
-VITRUM_CONST uint kStatCount = 21u;
+VITRUM_CONST uint kStatRestartedSteps = 21u;     // steps of first attempts given up (see kResumable)
+VITRUM_CONST uint kStatCount = 22u;
 
 // ---- Sampling -------------------------------------------------------------------------------
 // The integer hash both backends use for jitter, so that their samples are bit-identical:

@@ -149,6 +149,7 @@ TEST(LoopLimit, SceneNeedingMoreThan65535IterationsMatchesReference) {
     RenderPair r = renderBoth(scene);
     EXPECT_GT(r.gpuStats.maxPixelLoopSteps, 65535u) << "the scene no longer needs more than the driver's limit";
     EXPECT_GT(r.gpuStats.dispatches, 1u);
+    EXPECT_GT(r.gpuStats.restartedPixels, 0u);  // the first dispatch gave them up; the resumable kernel finished them
     EXPECT_EQ(r.gpuStats.limits.loopLimitSuspected, 0u);
     expectImagesMatch(r);
     std::cout << "loop-limit scene: " << r.gpuStats.dispatches << " dispatches, at most "
@@ -166,9 +167,11 @@ TEST(LoopLimit, DriverLimitIsDetectedAndRecovered) {
     expectImagesMatch(r);
 }
 
-// A budget of a few steps suspends every pixel again and again, at every kind of step: in the
-// middle of traversals (whose stacks are then saved and restored), between shading phases, with
-// pending rays queued. The image and the rays traced must be exactly those of one dispatch.
+// A budget of a few steps gives up nearly every pixel in the first dispatch and suspends it again
+// and again in the resumable kernel, at every kind of step: in the middle of traversals (whose
+// stacks are then saved and restored), between shading phases, with pending rays queued. The
+// image and the rays traced must be exactly those of one dispatch: nothing a given-up attempt
+// counted may count.
 TEST(LoopLimit, TinyBudgetGivesTheImageOfOneDispatch) {
     Scene scene = loadSized("scenes/demo.json", 24, 18, FresnelModel::Exact);
     const Bvh bvh = buildBvh(scene.triangles);
@@ -178,7 +181,12 @@ TEST(LoopLimit, TinyBudgetGivesTheImageOfOneDispatch) {
     const Image b = renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = 7}, split);
     EXPECT_EQ(testDevice().validationMessages(), before);
     EXPECT_EQ(whole.dispatches, 1u);
+    EXPECT_EQ(whole.restartedPixels, 0u);
     EXPECT_GT(split.dispatches, 50u);
+    EXPECT_GT(split.restartedPixels, 24u * 18u / 2u);
+    EXPECT_LE(split.restartedPixels, 24u * 18u);
+    EXPECT_LE(split.restartedSteps, 7u * split.restartedPixels);  // each attempt ran out of its budget
+    EXPECT_GE(split.restartedSteps, 6u * split.restartedPixels);
     EXPECT_EQ(a.pixels, b.pixels);
     EXPECT_EQ(whole.rays.total(), split.rays.total());
     EXPECT_EQ(whole.nodeVisits, split.nodeVisits);
