@@ -8,6 +8,12 @@
 // kernel (kResumable) restarts them and keeps their state between its dispatches (suspend.glsl),
 // and the host dispatches it until every pixel of the tile is done. Nothing recurses.
 #extension GL_GOOGLE_include_directive : require
+// The default build sums its statistics over each subgroup before adding them up atomically; the
+// build with VITRUM_ATOMIC_STATISTICS (trace_atomic_statistics.spv.h) is for devices without
+// subgroup arithmetic.
+#ifndef VITRUM_ATOMIC_STATISTICS
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#endif
 
 #include "shared/gpu_types.h"
 #include "bindings.glsl"
@@ -425,8 +431,24 @@ void startPixel() {
 
 #include "suspend.glsl"
 
+// On lavapipe every atomic is a loop over the 8 lanes, and the two worker threads contend for
+// the counters' cache lines: one atomic a subgroup instead of one a lane saves about 10%.
 void addStat(uint index, uint value) {
+#ifdef VITRUM_ATOMIC_STATISTICS
     if (value != 0u) atomicAdd(stats[index], value);
+#else
+    uint total = subgroupAdd(value);
+    if (subgroupElect() && total != 0u) atomicAdd(stats[index], total);
+#endif
+}
+
+void maxStat(uint index, uint value) {
+#ifdef VITRUM_ATOMIC_STATISTICS
+    if (value != 0u) atomicMax(stats[index], value);
+#else
+    uint most = subgroupMax(value);
+    if (subgroupElect() && most != 0u) atomicMax(stats[index], most);
+#endif
 }
 
 void main() {
@@ -472,13 +494,13 @@ void main() {
     st.traversal.w += steps;
     bool done = st.control.x == kPhaseDone;
     if (done) {
-        atomicMax(stats[kStatMaxPixelSteps], st.traversal.w);
+        maxStat(kStatMaxPixelSteps, st.traversal.w);
         pixels[pixel.y * params.image.x + pixel.x] = vec4(st.accumulated.xyz / float(params.image.z), 1.0);
     } else {
         // Out of budget: the next dispatch resumes (or restarts) the pixel. A loop that stopped
         // short of both the end and the budget was stopped by the driver: count it, never hide it.
-        if (steps < budget) atomicAdd(stats[kStatLoopLimitSuspected], 1u);
-        atomicAdd(stats[kStatUnfinishedPixels], 1u);
+        addStat(kStatLoopLimitSuspected, steps < budget ? 1u : 0u);
+        addStat(kStatUnfinishedPixels, 1u);
     }
     if (kResumable) {
         suspendState(slot, !done);
@@ -486,7 +508,7 @@ void main() {
         markSlot(slot, done);
         // A pixel given up is traced again from its start: what it counted so far would count twice.
         if (!done) {
-            atomicAdd(stats[kStatRestartedSteps], steps);
+            addStat(kStatRestartedSteps, steps);
             return;
         }
     }
@@ -506,6 +528,6 @@ void main() {
     addStat(kStatTouchingInterfaces, gTouchingInterfaces);
     addStat(kStatTouchingProbes, gTouchingProbes);
     addStat(kStatInconsistentMedia, gInconsistentMedia);
-    if (gMaxRayDepth != 0u) atomicMax(stats[kStatMaxRayDepth], gMaxRayDepth);
-    if (gMaxMediumDepth != 0u) atomicMax(stats[kStatMaxMediumDepth], gMaxMediumDepth);
+    maxStat(kStatMaxRayDepth, gMaxRayDepth);
+    maxStat(kStatMaxMediumDepth, gMaxMediumDepth);
 }

@@ -3,11 +3,12 @@
 #include <algorithm>
 
 #include "trace.spv.h"
+#include "trace_atomic_statistics.spv.h"
 
 namespace vitrum {
 
 ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization,
-                                  bool resumable) {
+                                  bool resumable, bool subgroupStatistics) {
     std::array<VkDescriptorType, kTraceBindingCount> bindings;
     bindings.fill(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     for (TraceBinding texels : {kBindingParams, kBindingNodes, kBindingVertices, kBindingShading, kBindingMaterials, kBindingLights,
@@ -26,7 +27,10 @@ ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecial
         .dataSize = sizeof(constants),
         .pData = constants.data(),
     };
-    return ComputePipeline(device, std::span<const std::uint32_t>(trace_spv, std::size(trace_spv)), bindings, &info);
+    const auto code = subgroupStatistics
+                          ? std::span<const std::uint32_t>(trace_spv, std::size(trace_spv))
+                          : std::span<const std::uint32_t>(trace_atomic_statistics_spv, std::size(trace_atomic_statistics_spv));
+    return ComputePipeline(device, code, bindings, &info);
 }
 
 }  // namespace vitrum

@@ -149,6 +149,11 @@ VulkanDevice::VulkanDevice(const std::string& selector) {
         physicalDevice_ = devices[selectDevice(devices, selector)];
         vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
         vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+        VkPhysicalDeviceSubgroupProperties subgroup{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+        VkPhysicalDeviceProperties2 properties2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &subgroup};
+        vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
+        subgroupArithmetic_ = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+                              (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);
         if (properties_.apiVersion < VK_API_VERSION_1_2)
             throw InputError(std::string("Vulkan device ") + properties_.deviceName + " supports only Vulkan " +
                              std::to_string(VK_API_VERSION_MAJOR(properties_.apiVersion)) + "." +

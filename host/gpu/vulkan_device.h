@@ -38,6 +38,9 @@ public:
     std::uint32_t queueFamily() const { return queueFamily_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     std::string name() const { return properties_.deviceName; }
+    // Whether compute shaders may use subgroup arithmetic (subgroupAdd and the like): not a
+    // Vulkan 1.2 requirement, though lavapipe and desktop GPUs have it.
+    bool hasSubgroupArithmetic() const { return subgroupArithmetic_; }
     // Messages the validation layer sent so far (0 when validation is off).
     std::uint32_t validationMessages() const;
 
@@ -57,6 +60,7 @@ private:
     void endSubmitWait(VkCommandBuffer commands);
 
     VkInstance instance_ = VK_NULL_HANDLE;
+    bool subgroupArithmetic_ = false;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties properties_{};

@@ -110,7 +110,8 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     const std::array<const GpuBuffer*, kTraceBindingCount> bound{
         &params, &nodes, &vertices, &shading, &materials, &lights, &textures,
         &texels, &objectMaterials, &pixels, &states, &counters, &pendingRays, &traversalStacks};
-    ComputePipeline firstPass = makeTracePipeline(device, kernel, false);
+    const bool subgroupStatistics = options.subgroupStatistics && device.hasSubgroupArithmetic();
+    ComputePipeline firstPass = makeTracePipeline(device, kernel, false, subgroupStatistics);
     firstPass.bind(bound);
     stats.addPhase("pipeline", secondsSince(start));
 
@@ -159,7 +160,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
             stats.restartedPixels += givenUp;
             if (givenUp > 0 && !resumable) {
                 const auto buildStart = Clock::now();
-                resumable.emplace(makeTracePipeline(device, kernel, true));
+                resumable.emplace(makeTracePipeline(device, kernel, true, subgroupStatistics));
                 resumable->bind(bound);
                 compile(*resumable);
                 resumableSeconds = secondsSince(buildStart);

@@ -2,6 +2,8 @@
 // dielectric scene at depth 10 with both Fresnel models, touching media, and the loop limit.
 #include "gpu_test_support.h"
 
+#include <nlohmann/json.hpp>
+
 namespace vitrum::testing {
 namespace {
 
@@ -191,6 +193,30 @@ TEST(LoopLimit, TinyBudgetGivesTheImageOfOneDispatch) {
     EXPECT_EQ(whole.rays.total(), split.rays.total());
     EXPECT_EQ(whole.nodeVisits, split.nodeVisits);
     EXPECT_EQ(split.limits.loopLimitSuspected, 0u);
+}
+
+// The statistics summed over subgroups before the atomics (the default where the device has
+// subgroup arithmetic) are the numbers one atomic per invocation gives, with the budget small
+// enough that pixels are given up, restarted and suspended too.
+TEST(Statistics, SubgroupSumsCountWhatPlainAtomicsCount) {
+    if (testDevice().name().find("llvmpipe") != std::string::npos) ASSERT_TRUE(testDevice().hasSubgroupArithmetic());
+    if (!testDevice().hasSubgroupArithmetic()) GTEST_SKIP() << "the device has no subgroup arithmetic";
+    Scene scene = loadSized("scenes/demo.json", 40, 30, FresnelModel::Exact);
+    const Bvh bvh = buildBvh(scene.triangles);
+    RenderStats summed, plain;
+    const Image a = renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = 300}, summed);
+    const Image b = renderVulkan(testDevice(), scene, bvh,
+                                 VulkanRenderOptions{.iterationBudget = 300, .subgroupStatistics = false}, plain);
+    EXPECT_EQ(a.pixels, b.pixels);
+    EXPECT_GT(summed.restartedPixels, 0u);
+    EXPECT_GT(summed.dispatches, 2u);
+    EXPECT_EQ(toJson(summed)["rays"], toJson(plain)["rays"]);
+    EXPECT_EQ(toJson(summed)["limits"], toJson(plain)["limits"]);
+    for (const char* counter : {"node_visits", "loop_steps", "max_pixel_loop_steps", "dispatches", "restarted_pixels",
+                                "restarted_steps", "max_ray_depth", "max_medium_depth", "total_internal_reflections",
+                                "touching_probes"})
+        EXPECT_EQ(toJson(summed)[counter], toJson(plain)[counter]) << counter;
+    EXPECT_GT(summed.nodeVisits, 0u);
 }
 
 }  // namespace
