@@ -60,11 +60,20 @@ TriangleVertices loadTriangle(uint i) {
                             fetchVec4(vertexTexels, first, 2u));
 }
 
-TriangleShading loadShading(uint i) {
+// A triangle's vertex normals (TriangleShading's first three texels).
+mat3 loadVertexNormals(uint i) {
     uint first = kTriangleShadingTexels * i;
-    return TriangleShading(fetchVec4(shadingTexels, first, 0u), fetchVec4(shadingTexels, first, 1u),
-                           fetchVec4(shadingTexels, first, 2u), fetchVec4(shadingTexels, first, 3u),
-                           fetchVec4(shadingTexels, first, 4u));
+    return mat3(fetchVec4(shadingTexels, first, 0u).xyz, fetchVec4(shadingTexels, first, 1u).xyz,
+                fetchVec4(shadingTexels, first, 2u).xyz);
+}
+
+// A triangle's texture coordinates at its three corners (TriangleShading's last two texels).
+void loadCornerUvs(uint i, out vec2 uv0, out vec2 uv1, out vec2 uv2) {
+    uint first = kTriangleShadingTexels * i;
+    vec4 uv01 = fetchVec4(shadingTexels, first, 3u);
+    uv0 = uv01.xy;
+    uv1 = uv01.zw;
+    uv2 = fetchVec4(shadingTexels, first, 4u).xy;
 }
 
 GpuMaterial loadMaterial(uint i) {

@@ -6,7 +6,7 @@
 // Position of sample k of n inside its pixel, in [0, 1)^2: the pixel centre for one sample,
 // otherwise a jittered point in cell (k % columns, k / columns) of a columns x (n / columns) grid.
 vec2 sampleOffsetInPixel(uint pixelIndex, uint k, uint n, uint columns) {
-    if (n == 1u) return vec2(0.5);
+    if (kSingleSample || n == 1u) return vec2(0.5);
     uint seed = pixelIndex * 2654435761u;
     float jx = hashToUnit(pcgHash(seed ^ pcgHash(2u * k)));
     float jy = hashToUnit(pcgHash(seed ^ pcgHash(2u * k + 1u)));

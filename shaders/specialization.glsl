@@ -17,10 +17,11 @@ layout(constant_id = 6) const uint kFresnelModel = kAnyKind;    // kFresnel* or 
 layout(constant_id = 7) const uint kTextureFilter = kAnyKind;   // kFilter* or kAnyKind
 layout(constant_id = 8) const uint kMediumStackDepth = kMaxMediumDepth;  // 1..kMaxMediumDepth
 layout(constant_id = 9) const uint kPendingRayCapacity = kRayStackSize;  // 0..kRayStackSize
+layout(constant_id = 10) const bool kSingleSample = false;  // one sample a pixel: its centre
 // Not a scene feature but the kernel's role (shaders/suspend.glsl): the first dispatch of a tile
 // runs without it and gives up the pixels that need more than one dispatch; the resumable kernel
 // restarts them and suspends them between dispatches.
-layout(constant_id = 10) const bool kResumable = true;
+layout(constant_id = 11) const bool kResumable = true;
 
 bool usesMaterial(uint model) { return ((kMaterialModels >> model) & 1u) != 0u; }
 

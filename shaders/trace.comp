@@ -153,12 +153,12 @@ void finishTrace() {
     st.ray.weight.xyz *= beerLambert(mu, t);
 
     TriangleVertices tri = loadTriangle(triangle);
-    TriangleShading sh = loadShading(triangle);
+    mat3 normals = loadVertexNormals(triangle);
     vec2 bary = st.hitUv.zw;
     float w0 = 1.0 - bary.x - bary.y;
     vec3 edgeCross = cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz);
     float crossLength = length(edgeCross);
-    vec3 interpolated = w0 * sh.n0.xyz + bary.x * sh.n1.xyz + bary.y * sh.n2.xyz;
+    vec3 interpolated = w0 * normals[0] + bary.x * normals[1] + bary.y * normals[2];
     float normalLength = length(interpolated);
     bool shadingValid = normalLength > 0.0 && !isinf(normalLength);
     // A triangle whose corners are collinear has no geometric normal but can still be hit by
@@ -167,14 +167,17 @@ void finishTrace() {
                                ? edgeCross / crossLength
                                : (shadingValid ? interpolated / normalLength : -st.ray.direction.xyz);
     vec3 shadingNormal = shadingValid ? interpolated / normalLength : geometricNormal;
-    vec2 uv = w0 * sh.uv01.xy + bary.x * sh.uv01.zw + bary.y * sh.uv2.xy;
     // The hit point from the barycentrics, not origin + t d: it lies on the triangle to within
     // rounding (Waechter and Binder).
     vec3 position = w0 * tri.v0.xyz + bary.x * tri.v1.xyz + bary.y * tri.v2.xyz;
     st.hitPosition = vec4(position, t);
     st.hitNormal = vec4(shadingNormal, tri.v0.w);
     st.hitGeometricNormal = vec4(geometricNormal, tri.v1.w);
-    st.hitUv.xy = uv;
+    if (kTextures) {  // only texture lookups read them
+        vec2 uv0, uv1, uv2;
+        loadCornerUvs(triangle, uv0, uv1, uv2);
+        st.hitUv.xy = w0 * uv0 + bary.x * uv1 + bary.y * uv2;
+    }
 
     uint model = materialModel(loadMaterial(hitMaterial()));
     if (usesMaterial(kMaterialGlass) && model == kMaterialGlass) {

@@ -15,7 +15,7 @@ ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecial
                                 kBindingObjectMaterials})
         bindings[texels] = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     const auto sceneConstants = specialization.constants();
-    std::array<std::uint32_t, sceneConstants.size() + 1> constants;  // then kResumable (constant_id 10)
+    std::array<std::uint32_t, sceneConstants.size() + 1> constants;  // then kResumable (constant_id 11)
     std::copy(sceneConstants.begin(), sceneConstants.end(), constants.begin());
     constants.back() = resumable ? 1u : 0u;
     std::array<VkSpecializationMapEntry, constants.size()> entries;

@@ -31,10 +31,11 @@ TraceSpecialization TraceSpecialization::forScene(const Scene& scene, const Scen
     // entry each keeps the unused code well-formed (it is never reached).
     s.mediumStackDepth = std::max(1u, f.mediumStackDepth);
     s.pendingRayCapacity = f.rayStackDepth;
+    s.singleSample = scene.settings.samplesPerPixel == 1;
     return s;
 }
 
-std::array<std::uint32_t, 10> TraceSpecialization::constants() const {
+std::array<std::uint32_t, 11> TraceSpecialization::constants() const {
     return {materialModels,
             shadowRays ? 1u : 0u,
             absorption ? 1u : 0u,
@@ -44,7 +45,8 @@ std::array<std::uint32_t, 10> TraceSpecialization::constants() const {
             fresnelModel,
             textureFilter,
             mediumStackDepth,
-            pendingRayCapacity};
+            pendingRayCapacity,
+            singleSample ? 1u : 0u};
 }
 
 namespace {
@@ -78,6 +80,7 @@ std::vector<std::string> TraceSpecialization::describe() const {
         "filter: " + kindName(textureFilter, textureFilterName),
         "medium stack: " + std::to_string(mediumStackDepth) + " media a ray",
         "pending-ray stack: " + std::to_string(pendingRayCapacity) + " rays a pixel",
+        std::string("samples: ") + (singleSample ? "one a pixel (no jitter)" : "any (run time)"),
     };
 }
 
@@ -94,6 +97,7 @@ nlohmann::json toJson(const TraceSpecialization& s) {
         {"filter", kindName(s.textureFilter, textureFilterName)},
         {"medium_stack_depth", s.mediumStackDepth},
         {"pending_ray_capacity", s.pendingRayCapacity},
+        {"single_sample", s.singleSample},
     };
 }
 

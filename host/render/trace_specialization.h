@@ -31,12 +31,13 @@ struct TraceSpecialization {
     std::uint32_t textureFilter = kAnyKind;   // TextureFilter or kAnyKind
     std::uint32_t mediumStackDepth;           // media one ray can be inside
     std::uint32_t pendingRayCapacity;         // pending rays a pixel
+    bool singleSample = false;                // one sample a pixel: no jitter code
 
     static TraceSpecialization general();
     static TraceSpecialization forScene(const Scene& scene, const SceneFeatures& features);
 
     // The constants in constant_id order, as VkSpecializationInfo reads them.
-    std::array<std::uint32_t, 10> constants() const;
+    std::array<std::uint32_t, 11> constants() const;
     std::vector<std::string> describe() const;  // one line a setting, for `vitrum info`
 };
 
