@@ -216,9 +216,7 @@ vec3 diffuseColour(GpuMaterial m) {
 
 // The visibility-weighted part of light `index` at the hit: m_d max(0, n.l) (+ Phong's
 // m_s max(0, l_r.v)^Ns), times the light's colour and fall-off.
-vec3 directLight(uint index) {
-    GpuMaterial m = loadMaterial(hitMaterial());
-    GpuLight light = loadLight(index);
+vec3 directLight(GpuMaterial m, GpuLight light) {
     vec3 p = st.hitPosition.xyz;
     vec3 n = st.hitNormal.xyz;
     vec3 toLight = light.position.xyz - p;
@@ -238,31 +236,30 @@ vec3 directLight(uint index) {
 }
 
 // Lambert and Phong: ambient from every light, then one shadow ray per light whose direct term
-// is not zero.
-void nextLight() {
+// is not zero; the shadow ray carries that term (st.probe.yzw) to finishShadow.
+void nextLight(GpuMaterial m) {
     uint index = st.control.z;
     if (!kShadowRays || index >= params.counts.x) {
-        uint model = materialModel(loadMaterial(hitMaterial()));
-        st.control.x = usesMaterial(kMaterialPhong) && model == kMaterialPhong ? kPhaseScatter : kPhaseNextRay;
+        st.control.x = usesMaterial(kMaterialPhong) && materialModel(m) == kMaterialPhong ? kPhaseScatter : kPhaseNextRay;
         return;
     }
-    GpuMaterial m = loadMaterial(hitMaterial());
-    st.sampleColour.xyz += st.ray.weight.xyz * loadLight(index).colour.xyz * m.ambient.xyz;
-    vec3 direct = directLight(index);
+    GpuLight light = loadLight(index);
+    st.sampleColour.xyz += st.ray.weight.xyz * light.colour.xyz * m.ambient.xyz;
+    vec3 direct = directLight(m, light);
     if (all(equal(direct, vec3(0.0)))) {
         st.control.z = index + 1u;
         return;
     }
     vec3 origin = offsetRayOrigin(st.hitPosition.xyz, st.hitGeometricNormal.xyz);
     gShadowRays += 1u;
-    beginTraversal(origin, loadLight(index).position.xyz - origin, 0.0, 1.0);
+    st.probe.yzw = direct;
+    beginTraversal(origin, light.position.xyz - origin, 0.0, 1.0);
     st.control.x = kPhaseShadow;
 }
 
 void finishShadow() {
-    uint index = st.control.z;
-    if (st.traversal.z == kNoTriangle) st.sampleColour.xyz += st.ray.weight.xyz * directLight(index);
-    st.control.z = index + 1u;
+    if (st.traversal.z == kNoTriangle) st.sampleColour.xyz += st.ray.weight.xyz * st.probe.yzw;
+    st.control.z += 1u;
     st.control.x = kPhaseNextLight;
 }
 
@@ -398,8 +395,7 @@ bool spawnsRays() {
     return usesMaterial(kMaterialPhong) || usesMaterial(kMaterialMirror) || usesMaterial(kMaterialGlass);
 }
 
-void scatter() {
-    GpuMaterial m = loadMaterial(hitMaterial());
+void scatter(GpuMaterial m) {
     if (usesMaterial(kMaterialGlass) && materialModel(m) == kMaterialGlass) scatterGlass(m);
     else scatterOpaque(m);
     st.control.x = kPhaseNextRay;
@@ -488,8 +484,11 @@ void main() {
             else if (phase == kPhaseTrace) finishTrace();
             else st.control.x = kPhaseScatter;
         }
-        if (st.control.x == kPhaseNextLight) nextLight();  // may begin a shadow traversal
-        if (spawnsRays() && st.control.x == kPhaseScatter) scatter();
+        // The hit's material, read once for the phases that follow (only lanes at a hit use it).
+        uint shadingPhase = st.control.x;
+        GpuMaterial m = loadMaterial(shadingPhase == kPhaseNextLight || shadingPhase == kPhaseScatter ? hitMaterial() : 0u);
+        if (shadingPhase == kPhaseNextLight) nextLight(m);  // may begin a shadow traversal
+        if (spawnsRays() && st.control.x == kPhaseScatter) scatter(m);
         if (st.control.x == kPhaseNextRay) nextRay();  // begins a traversal or ends the sample
         if (st.control.x == kPhaseStartSample) startSample();
     }

@@ -191,7 +191,8 @@ struct TraceState {
     uvec4 traversal;                     // leaf cursor, leaf end, closest triangle, pixel's steps
     uvec4 touching;                      // other objects' glass surfaces at the hit: object | entering
                                          // << 31, up to 3; .w = how many
-    vec4 probe;                          // .x = farthest touching surface's t
+    vec4 probe;                          // .x = farthest touching surface's t; .yzw = the direct
+                                         // light a pending shadow ray adds if unoccluded
 };
 
 // ---- Render statistics (storage buffer of uints, one counter each) -----------------------------
