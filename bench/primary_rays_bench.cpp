@@ -191,7 +191,7 @@ int run(int argc, char** argv) {
               << " nodes of 80 bytes), a 64-entry stack, the same watertight triangle test; it only finds the hit. "
                  "It agrees with the CPU traversal on "
               << bench::fixed(100.0 * agreement, 2) << "% of the pixels. vitrum renders the same view with `max_depth` 1 and no "
-                 "lights: its full kernel (tiles, resumable state, shading of the hit), " << rays << " rays. Times are "
+                 "lights: its full kernel (tiles, the first dispatch of each, shading of the hit), " << rays << " rays. Times are "
                  "medians of " << runs << " runs, the two kernels taking turns; the first run (compile) is not counted.\n\n"
               << "| kernel | s a frame | Mrays/s | compile s | vitrum against the baseline |\n"
               << "|---|---:|---:|---:|---:|\n"

@@ -3,7 +3,7 @@
 // The first dispatch of a tile runs the kernel built without kResumable: a pixel that is not done
 // within the step budget is given up, and its slot says so (kSlotRestart). Keeping a resumable
 // state costs every pixel, also those that never suspend: on lavapipe the saved state is live,
-// lane-masked, through the whole loop (measured: the first dispatch runs about 15% faster
+// lane-masked, through the whole loop (measured: the first dispatch runs 5-15% faster
 // without it). The host then dispatches the resumable kernel until the tile is done: it starts
 // the given-up pixels afresh, and suspends and resumes them, their TraceState as
 // kTraceStateTexels uvec4s in stateTexels[] and the used part of their BVH traversal stack in
