@@ -22,6 +22,7 @@
 #include "gpu/vulkan_renderer.h"
 #include "plain_primary.spv.h"
 #include "plain_primary_texel.spv.h"
+#include "render/traversal_nodes.h"
 
 namespace vitrum {
 namespace {
@@ -38,32 +39,31 @@ struct PlainCamera {
     glm::ivec4 rootLeaf;
 };
 
-// vitrum's pbrt-style nodes (one box a node, first child next) as Aila-Laine nodes (both
-// children's boxes in the parent). Inner nodes keep their depth-first order.
-std::vector<PlainNode> toPlainNodes(const std::vector<gpu::BvhNode>& nodes) {
-    std::vector<int> plainIndex(nodes.size(), -1);
-    int inner = 0;
-    for (std::size_t i = 0; i < nodes.size(); ++i)
-        if (glm::floatBitsToUint(nodes[i].boundsMax.w) & gpu::kInteriorNodeFlag) plainIndex[i] = inner++;
-    std::vector<PlainNode> plain(std::max(inner, 1));
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-        if (plainIndex[i] < 0) continue;
-        const std::uint32_t children[2] = {std::uint32_t(i + 1), glm::floatBitsToUint(nodes[i].boundsMin.w)};
-        PlainNode& p = plain[plainIndex[i]];
-        for (int c = 0; c < 2; ++c) {
-            const gpu::BvhNode& child = nodes[children[c]];
-            (c ? p.lo1 : p.lo0) = glm::vec4(glm::vec3(child.boundsMin), 0.0f);
-            (c ? p.hi1 : p.hi0) = glm::vec4(glm::vec3(child.boundsMax), 0.0f);
-            const std::uint32_t meta = glm::floatBitsToUint(child.boundsMax.w);
-            const bool leaf = !(meta & gpu::kInteriorNodeFlag);
-            p.links[c] = leaf ? ~int(glm::floatBitsToUint(child.boundsMin.w)) : plainIndex[children[c]];
-            p.links[2 + c] = leaf ? int(meta) : 0;
-        }
+// vitrum's GPU nodes (render/traversal_nodes.h, already Aila-Laine: both children's boxes in the
+// parent) in the baseline's textbook encoding: links in a texel of their own, a leaf as
+// ~firstTriangle with its count.
+std::vector<PlainNode> toPlainNodes(const TraversalNodes& tree) {
+    auto link = [](std::uint32_t entry, int& count) {
+        if (!(entry & gpu::kLeafEntryFlag)) return int(entry);
+        count = int(entry & 15u);
+        return ~int((entry & ~gpu::kLeafEntryFlag) >> 4);
+    };
+    std::vector<PlainNode> plain(std::max<std::size_t>(tree.nodes.size(), 1));
+    for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
+        const gpu::TraversalNode& n = tree.nodes[i];
+        PlainNode& p = plain[i];
+        p.lo0 = glm::vec4(glm::vec3(n.min0), 0.0f);
+        p.hi0 = glm::vec4(glm::vec3(n.max0), 0.0f);
+        p.lo1 = glm::vec4(glm::vec3(n.min1), 0.0f);
+        p.hi1 = glm::vec4(glm::vec3(n.max1), 0.0f);
+        p.links = glm::ivec4(0);
+        p.links.x = link(glm::floatBitsToUint(n.min0.w), p.links.z);
+        p.links.y = link(glm::floatBitsToUint(n.min1.w), p.links.w);
     }
     return plain;
 }
 
-PlainCamera plainCamera(const Camera& camera, const std::vector<gpu::BvhNode>& nodes) {
+PlainCamera plainCamera(const Camera& camera, const TraversalNodes& tree) {
     const glm::vec3 forward = glm::normalize(camera.at - camera.from);
     const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
     const glm::vec3 up = glm::cross(right, forward);
@@ -74,8 +74,8 @@ PlainCamera plainCamera(const Camera& camera, const std::vector<gpu::BvhNode>& n
     c.lowerLeft = glm::vec4(forward - halfWidth * right + halfHeight * up, float(camera.height));
     c.right = glm::vec4(right * (2.0f * halfWidth / float(camera.width)), 0.0f);
     c.down = glm::vec4(-up * (2.0f * halfHeight / float(camera.height)), 0.0f);
-    const std::uint32_t rootMeta = glm::floatBitsToUint(nodes[0].boundsMax.w);
-    c.rootLeaf = (rootMeta & gpu::kInteriorNodeFlag) ? glm::ivec4(0) : glm::ivec4(1, int(rootMeta), 0, 0);
+    const bool rootIsLeaf = (tree.rootEntry & gpu::kLeafEntryFlag) != 0;
+    c.rootLeaf = rootIsLeaf ? glm::ivec4(1, int(tree.rootEntry & 15u), 0, 0) : glm::ivec4(0);
     return c;
 }
 
@@ -132,8 +132,9 @@ int run(int argc, char** argv) {
     scene.settings.maxDepth = 1;  // primary rays only; no lights, so no shadow rays
     const Bvh bvh = buildBvh(scene.triangles);
     const std::vector<gpu::TriangleVertices> vertices = packTriangleVertices(bvh, scene.triangles);
-    const std::vector<PlainNode> plainNodes = toPlainNodes(bvh.nodes);
-    const PlainCamera camera = plainCamera(scene.camera, bvh.nodes);
+    const TraversalNodes tree = makeTraversalNodes(bvh.nodes);
+    const std::vector<PlainNode> plainNodes = toPlainNodes(tree);
+    const PlainCamera camera = plainCamera(scene.camera, tree);
 
     VulkanDevice device("");
     PlainKernel storage(device, plain_primary_spv, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, plainNodes, vertices, camera);

@@ -41,6 +41,9 @@ PackedScene packScene(const Scene& scene, const Bvh& bvh) {
             .attenuation = glm::vec4(m.attenuation, m.ior),
         });
     }
+    // The kernel reads material 0 for lanes that are not at a hit (one fetch a round for all
+    // lanes, shaders/trace.comp), so there is always one.
+    if (packed.materials.empty()) packed.materials.push_back({});
     for (const PointLight& light : scene.lights)
         packed.lights.push_back({glm::vec4(light.position, light.inverseSquare ? 1.0f : 0.0f), glm::vec4(light.colour, 0.0f)});
     for (const Texture& texture : scene.textures) {
