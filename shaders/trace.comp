@@ -10,10 +10,7 @@
 #extension GL_GOOGLE_include_directive : require
 // The default build sums its statistics over each subgroup before adding them up atomically; the
 // build with VITRUM_ATOMIC_STATISTICS (trace_atomic_statistics.spv.h) is for devices without
-// subgroup arithmetic.
-#ifndef VITRUM_ATOMIC_STATISTICS
-#extension GL_KHR_shader_subgroup_arithmetic : require
-#endif
+// subgroup arithmetic (statistics.glsl).
 
 #include "shared/gpu_types.h"
 #include "bindings.glsl"
@@ -430,25 +427,7 @@ void startPixel() {
 
 #include "suspend.glsl"
 
-// On lavapipe every atomic is a loop over the 8 lanes, and the two worker threads contend for
-// the counters' cache lines: one atomic a subgroup instead of one a lane saves about 10%.
-void addStat(uint index, uint value) {
-#ifdef VITRUM_ATOMIC_STATISTICS
-    if (value != 0u) atomicAdd(stats[index], value);
-#else
-    uint total = subgroupAdd(value);
-    if (subgroupElect() && total != 0u) atomicAdd(stats[index], total);
-#endif
-}
-
-void maxStat(uint index, uint value) {
-#ifdef VITRUM_ATOMIC_STATISTICS
-    if (value != 0u) atomicMax(stats[index], value);
-#else
-    uint most = subgroupMax(value);
-    if (subgroupElect() && most != 0u) atomicMax(stats[index], most);
-#endif
-}
+#include "statistics.glsl"
 
 void main() {
     params = loadRenderParams();
@@ -495,41 +474,25 @@ void main() {
 
     st.traversal.w += steps;
     bool done = st.control.x == kPhaseDone;
-    if (done) {
-        maxStat(kStatMaxPixelSteps, st.traversal.w);
-        pixels[pixel.y * params.image.x + pixel.x] = vec4(st.accumulated.xyz / float(params.image.z), 1.0);
-    } else {
-        // Out of budget: the next dispatch resumes (or restarts) the pixel. A loop that stopped
-        // short of both the end and the budget was stopped by the driver: count it, never hide it.
-        addStat(kStatLoopLimitSuspected, steps < budget ? 1u : 0u);
-        addStat(kStatUnfinishedPixels, 1u);
+    if (done) pixels[pixel.y * params.image.x + pixel.x] = vec4(st.accumulated.xyz / float(params.image.z), 1.0);
+    if (kResumable) suspendState(slot, !done);
+    else markSlot(slot, done);
+
+    // A pixel the first dispatch gives up is traced again from its start: what it counted so far
+    // would count twice, so only its steps are counted, as restarted steps. A loop that stopped
+    // short of both the end and the budget was stopped by the driver: count it, never hide it.
+    bool counted = kResumable || done;
+    StatisticSums sums;
+    sums.v0 = uvec4(gPrimaryRays, gShadowRays, gReflectionRays, gRefractionRays);
+    sums.v1 = uvec4(0u, 0u, gTraversalOverflows, gDepthLimitHits);
+    sums.v2 = uvec4(gNodeVisits, steps, gRayStackOverflows, gMediumStackOverflows);
+    sums.v3 = uvec4(gWeightCuts, gTotalInternalReflections, gAbsorbedEscapes, gTouchingInterfaces);
+    sums.v4 = uvec4(gInconsistentMedia, gTouchingProbes, 0u, 0u);
+    uvec3 maxima = uvec3(done ? st.traversal.w : 0u, gMaxRayDepth, gMaxMediumDepth);
+    if (!counted) {
+        sums = StatisticSums(uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u, 0u, steps, 0u));  // kStatRestartedSteps
+        maxima = uvec3(0u);
     }
-    if (kResumable) {
-        suspendState(slot, !done);
-    } else {
-        markSlot(slot, done);
-        // A pixel given up is traced again from its start: what it counted so far would count twice.
-        if (!done) {
-            addStat(kStatRestartedSteps, steps);
-            return;
-        }
-    }
-    addStat(kStatTraversalSteps, steps);
-    addStat(kStatPrimaryRays, gPrimaryRays);
-    addStat(kStatShadowRays, gShadowRays);
-    addStat(kStatReflectionRays, gReflectionRays);
-    addStat(kStatRefractionRays, gRefractionRays);
-    addStat(kStatNodeVisits, gNodeVisits);
-    addStat(kStatTraversalStackOverflow, gTraversalOverflows);
-    addStat(kStatDepthLimitHits, gDepthLimitHits);
-    addStat(kStatRayStackOverflow, gRayStackOverflows);
-    addStat(kStatMediumStackOverflow, gMediumStackOverflows);
-    addStat(kStatWeightCuts, gWeightCuts);
-    addStat(kStatTotalInternalReflections, gTotalInternalReflections);
-    addStat(kStatAbsorbedEscapes, gAbsorbedEscapes);
-    addStat(kStatTouchingInterfaces, gTouchingInterfaces);
-    addStat(kStatTouchingProbes, gTouchingProbes);
-    addStat(kStatInconsistentMedia, gInconsistentMedia);
-    maxStat(kStatMaxRayDepth, gMaxRayDepth);
-    maxStat(kStatMaxMediumDepth, gMaxMediumDepth);
+    if (!done) sums.v1.xy = uvec2(1u, steps < budget ? 1u : 0u);  // kStatUnfinishedPixels, kStatLoopLimitSuspected
+    addStatistics(sums, maxima);
 }

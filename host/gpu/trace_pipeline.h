@@ -32,7 +32,7 @@ constexpr std::uint32_t kTraceGroupSize = 8;  // local_size_x = local_size_y in 
 // The first dispatch of every tile runs the kernel built with `resumable` false; the pixels it
 // gives up are restarted by the resumable one (shaders/suspend.glsl).
 // `subgroupStatistics`: the build of trace.comp that sums its counters with subgroup arithmetic
-// (VulkanDevice::hasSubgroupArithmetic must be true), else the one with plain atomics.
+// (VulkanDevice::hasSubgroupArithmeticAndBallot must be true), else the one with plain atomics.
 ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization,
                                   bool resumable, bool subgroupStatistics);
 

@@ -38,9 +38,10 @@ public:
     std::uint32_t queueFamily() const { return queueFamily_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     std::string name() const { return properties_.deviceName; }
-    // Whether compute shaders may use subgroup arithmetic (subgroupAdd and the like): not a
-    // Vulkan 1.2 requirement, though lavapipe and desktop GPUs have it.
-    bool hasSubgroupArithmetic() const { return subgroupArithmetic_; }
+    // Whether compute shaders may use subgroup arithmetic and ballots (subgroupAdd,
+    // subgroupBallot), as trace.comp's statistics do: not a Vulkan 1.2 requirement, though
+    // lavapipe and desktop GPUs have both.
+    bool hasSubgroupArithmeticAndBallot() const { return subgroupStatistics_; }
     // Messages the validation layer sent so far (0 when validation is off).
     std::uint32_t validationMessages() const;
 
@@ -60,7 +61,7 @@ private:
     void endSubmitWait(VkCommandBuffer commands);
 
     VkInstance instance_ = VK_NULL_HANDLE;
-    bool subgroupArithmetic_ = false;
+    bool subgroupStatistics_ = false;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties properties_{};

@@ -110,7 +110,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     const std::array<const GpuBuffer*, kTraceBindingCount> bound{
         &params, &nodes, &vertices, &shading, &materials, &lights, &textures,
         &texels, &objectMaterials, &pixels, &states, &counters, &pendingRays, &traversalStacks};
-    const bool subgroupStatistics = options.subgroupStatistics && device.hasSubgroupArithmetic();
+    const bool subgroupStatistics = options.subgroupStatistics && device.hasSubgroupArithmeticAndBallot();
     ComputePipeline firstPass = makeTracePipeline(device, kernel, false, subgroupStatistics);
     firstPass.bind(bound);
     stats.addPhase("pipeline", secondsSince(start));

@@ -22,8 +22,9 @@ struct VulkanRenderOptions {
     // Build the kernel for what the scene needs (render/trace_specialization.h); false: the
     // general kernel, which decides everything at run time (same image, more code to run).
     bool specialize = true;
-    // Sum the statistics over each subgroup before the atomics that add them up (8x fewer
-    // atomics on lavapipe) where the device has subgroup arithmetic; false: one atomic a counter
+    // Sum the statistics over each subgroup before the atomics that add them up, each lane
+    // adding another counter (shaders/statistics.glsl: 4 atomics a subgroup instead of 22 a
+    // lane), where the device has subgroup arithmetic and ballots; false: one atomic a counter
     // and invocation. The same numbers either way.
     bool subgroupStatistics = true;
     std::function<void(double)> progress;  // fraction done

@@ -214,13 +214,15 @@ VITRUM_CONST uint kStatMediumStackOverflow = 11u;
 VITRUM_CONST uint kStatWeightCuts = 12u;         // branches skipped by min_weight
 VITRUM_CONST uint kStatTotalInternalReflections = 13u;
 VITRUM_CONST uint kStatAbsorbedEscapes = 14u;    // rays leaving the scene inside an absorbing medium
-VITRUM_CONST uint kStatMaxPixelSteps = 15u;      // most loop steps one pixel needed (atomicMax)
-VITRUM_CONST uint kStatMaxRayDepth = 16u;        // deepest ray traced (atomicMax)
-VITRUM_CONST uint kStatMaxMediumDepth = 17u;     // most media one ray was inside (atomicMax)
-VITRUM_CONST uint kStatTouchingInterfaces = 18u; // glass hits where other objects' surfaces touch
-VITRUM_CONST uint kStatInconsistentMedia = 19u;  // a ray left an object it was not inside
-VITRUM_CONST uint kStatTouchingProbes = 20u;     // touching probes run (traversals around a glass hit)
-VITRUM_CONST uint kStatRestartedSteps = 21u;     // steps of first attempts given up (see kResumable)
+VITRUM_CONST uint kStatTouchingInterfaces = 15u; // glass hits where other objects' surfaces touch
+VITRUM_CONST uint kStatInconsistentMedia = 16u;  // a ray left an object it was not inside
+VITRUM_CONST uint kStatTouchingProbes = 17u;     // touching probes run (traversals around a glass hit)
+VITRUM_CONST uint kStatRestartedSteps = 18u;     // steps of first attempts given up (see kResumable)
+// The counters from kStatFirstMax on are maxima (atomicMax), the others sums.
+VITRUM_CONST uint kStatFirstMax = 19u;
+VITRUM_CONST uint kStatMaxPixelSteps = 19u;      // most loop steps one pixel needed
+VITRUM_CONST uint kStatMaxRayDepth = 20u;        // deepest ray traced
+VITRUM_CONST uint kStatMaxMediumDepth = 21u;     // most media one ray was inside
 VITRUM_CONST uint kStatCount = 22u;
 
 // ---- Sampling -------------------------------------------------------------------------------
