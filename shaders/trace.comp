@@ -260,35 +260,38 @@ void finishShadow() {
     st.control.x = kPhaseNextLight;
 }
 
-// Queues a child ray of st.ray unless a limit stops it; each limit is counted.
-void pushRay(vec3 origin, vec3 direction, vec3 weight, uvec4 media, uint count, bool sameDepth, bool reflection) {
-    uint depth = rayDepth(st.ray) + (sameDepth ? 0u : 1u);
+// Whether a child of st.ray at `depth` with path weight `weight` is traced; a limit that stops
+// it is counted.
+bool admitChild(uint depth, vec3 weight) {
     if (depth >= params.image.w) {
         gDepthLimitHits += 1u;
-        return;
+        return false;
     }
     if (all(lessThan(weight, vec3(params.tuning.x)))) {
         gWeightCuts += 1u;
-        return;
+        return false;
     }
-    if (st.control.y >= kPendingRayCapacity) {
-        gRayStackOverflows += 1u;
-        return;
-    }
+    return true;
+}
+
+PendingRay childRay(vec3 origin, vec3 direction, vec3 weight, uvec4 media, uint count, uint depth) {
     PendingRay r;
     r.origin = vec4(origin, uintBitsToFloat(depth));
     r.direction = vec4(direction, uintBitsToFloat(count));
     r.weight = vec4(weight, 0.0);
     r.media = media;
-    pendingRays[pendingBase + st.control.y] = r;
-    st.control.y += 1u;
-    if (sameDepth) return;
-    if (reflection) gReflectionRays += 1u;
-    else gRefractionRays += 1u;
+    return r;
 }
 
-// Opaque dielectric (Phong + Schlick-weighted, untinted reflection) and mirror.
-void scatterOpaque(GpuMaterial m) {
+// The children of a hit: the one traced next (`next`) and the one that waits in the pending-ray
+// stack (`waiting`, a refraction whose reflection goes first).
+struct Children {
+    PendingRay next, waiting;
+    bool hasNext, hasWaiting;
+};
+
+// Opaque dielectric (Phong + Schlick-weighted, untinted reflection) and mirror: the reflection.
+void scatterOpaque(GpuMaterial m, inout Children children) {
     vec3 d = st.ray.direction.xyz;
     vec3 n = st.hitNormal.xyz;
     vec3 origin = offsetRayOrigin(st.hitPosition.xyz, st.hitGeometricNormal.xyz);
@@ -303,7 +306,10 @@ void scatterOpaque(GpuMaterial m) {
         float r = fresnelReflectance(kFresnelSchlick, n1, n2, cosI, 1.0 - eta * eta * (1.0 - cosI * cosI));
         weight = st.ray.weight.xyz * r;
     }
-    pushRay(origin, reflectDirection(d, n), weight, st.ray.media, mediaCount(st.ray), false, true);
+    uint depth = rayDepth(st.ray) + 1u;
+    children.hasNext = admitChild(depth, weight);
+    children.next = childRay(origin, reflectDirection(d, n), weight, st.ray.media, mediaCount(st.ray), depth);
+    if (children.hasNext) gReflectionRays += 1u;
 }
 
 // The medium stack, written without loops: every loop iteration counts against lavapipe's limit.
@@ -342,7 +348,7 @@ float ior(uvec4 media, uint count) {
 // wound mesh; the medium stack says what is on the other side. Surfaces of other glass objects
 // touching the hit (st.touching) make one interface with it: the ray leaves, then enters, so
 // glass touching glass is glass -> glass (lecture: P2 is 1.5 -> 1.5, never 1.5 -> 1 -> 1.5).
-void scatterGlass(GpuMaterial m) {
+void scatterGlass(GpuMaterial m, inout Children children) {
     vec3 d = st.ray.direction.xyz;
     vec3 ng = st.hitGeometricNormal.xyz;
     bool entering = dot(d, ng) < 0.0;
@@ -370,9 +376,11 @@ void scatterGlass(GpuMaterial m) {
     vec3 p = st.hitPosition.xyz;
     // The transmitted ray starts beyond every surface of the interface.
     vec3 through = touchingCount == 0u ? p : st.ray.origin.xyz + st.probe.x * d;
+    uint depth = rayDepth(st.ray);
     if (n1 == n2) {
         // Index-matched: no optical interface; the same ray goes on with the new stack.
-        pushRay(offsetRayOrigin(through, -facing), d, st.ray.weight.xyz, media, count, true, false);
+        children.hasNext = admitChild(depth, st.ray.weight.xyz);
+        children.next = childRay(offsetRayOrigin(through, -facing), d, st.ray.weight.xyz, media, count, depth);
         return;
     }
     float eta = n1 / n2;
@@ -381,10 +389,15 @@ void scatterGlass(GpuMaterial m) {
     float r = fresnelReflectance(fresnelModel(), n1, n2, cosI, cos2t);
     if (cos2t < 0.0) gTotalInternalReflections += 1u;
     vec3 w = st.ray.weight.xyz;
-    if (cos2t >= 0.0)
-        pushRay(offsetRayOrigin(through, -facing), refractDirection(d, n, eta, cos2t), w * (1.0 - r), media, count,
-                false, false);
-    pushRay(offsetRayOrigin(p, facing), reflectDirection(d, n), w * r, st.ray.media, mediaCount(st.ray), false, true);
+    // The refraction is admitted first, as the CPU reference recursion order and the limits'
+    // counts have it; it waits while the reflection is traced.
+    children.hasWaiting = cos2t >= 0.0 && admitChild(depth + 1u, w * (1.0 - r));
+    children.waiting = childRay(offsetRayOrigin(through, -facing), refractDirection(d, n, eta, cos2t), w * (1.0 - r),
+                                media, count, depth + 1u);
+    children.hasNext = admitChild(depth + 1u, w * r);
+    children.next = childRay(offsetRayOrigin(p, facing), reflectDirection(d, n), w * r, st.ray.media, mediaCount(st.ray),
+                             depth + 1u);
+    if (children.hasNext) gReflectionRays += 1u;
 }
 
 // Whether any material of this build spawns reflected or refracted rays.
@@ -392,10 +405,37 @@ bool spawnsRays() {
     return usesMaterial(kMaterialPhong) || usesMaterial(kMaterialMirror) || usesMaterial(kMaterialGlass);
 }
 
+void beginRay() {
+    gMaxRayDepth = max(gMaxRayDepth, rayDepth(st.ray));
+    beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 0.0, 3.0e38);
+    st.control.x = kPhaseTrace;
+}
+
+// The hit's children: the one traced next goes on at once as st.ray, and only a refraction whose
+// reflection goes first waits in the pending-ray stack. So the kernel has one place that stores a
+// pending ray: on lavapipe each store costs a loop over the lanes every round, whether a lane
+// stores or not. The order is the one of pushing both and popping the reflection at once.
 void scatter(GpuMaterial m) {
-    if (usesMaterial(kMaterialGlass) && materialModel(m) == kMaterialGlass) scatterGlass(m);
-    else scatterOpaque(m);
-    st.control.x = kPhaseNextRay;
+    Children children;
+    children.hasNext = false;
+    children.hasWaiting = false;
+    if (usesMaterial(kMaterialGlass) && materialModel(m) == kMaterialGlass) scatterGlass(m, children);
+    else scatterOpaque(m, children);
+    if (usesMaterial(kMaterialGlass) && children.hasWaiting) {
+        if (st.control.y >= kPendingRayCapacity) {
+            gRayStackOverflows += 1u;  // the refraction is dropped, never silently
+        } else {
+            pendingRays[pendingBase + st.control.y] = children.waiting;
+            st.control.y += 1u;
+            gRefractionRays += 1u;
+        }
+    }
+    if (children.hasNext) {
+        st.ray = children.next;
+        beginRay();
+    } else {
+        st.control.x = kPhaseNextRay;
+    }
 }
 
 void nextRay() {
@@ -407,9 +447,7 @@ void nextRay() {
     }
     st.control.y -= 1u;
     st.ray = pendingRays[pendingBase + st.control.y];
-    gMaxRayDepth = max(gMaxRayDepth, rayDepth(st.ray));
-    beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 0.0, 3.0e38);
-    st.control.x = kPhaseTrace;
+    beginRay();
 }
 
 // The next sample's primary ray, or the end of the pixel.

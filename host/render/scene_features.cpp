@@ -142,7 +142,7 @@ SceneFeatures analyseScene(const Scene& scene) {
                                                   : std::min<std::uint32_t>(gpu::kMaxMediumDepth, 1 + mostOverlaps);
 
     const std::uint32_t maxDepth = scene.settings.maxDepth;
-    f.rayStackDepth = f.reflection ? std::min<std::uint32_t>(gpu::kRayStackSize, std::max(1u, maxDepth)) : 0;
+    f.rayStackDepth = f.glass ? std::min<std::uint32_t>(gpu::kRayStackSize, maxDepth > 0 ? maxDepth - 1 : 0) : 0;
     f.textures = f.textures && !scene.textures.empty();
     f.background = scene.background.kind;
     f.usefulDepth = f.reflection ? maxDepth : std::min<std::uint32_t>(1, maxDepth);

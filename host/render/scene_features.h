@@ -42,8 +42,9 @@ struct SceneFeatures {
     // whose boxes overlap one glass object's box (an upper bound on how deep they nest), capped
     // at the GPU's stack.
     std::uint32_t mediumStackDepth = 0;
-    // Pending rays of a depth-first ray tree: 0 without reflective or refractive materials, else
-    // max_depth (docs/gpu-design.md shows why that suffices), capped at gpu::kRayStackSize.
+    // Pending rays of a depth-first ray tree: only refractions wait (the reflection of a hit is
+    // traced at once), so 0 without glass, else max_depth - 1 (docs/gpu-design.md shows why that
+    // suffices), capped at gpu::kRayStackSize.
     std::uint32_t rayStackDepth = 0;
     // The max_depth beyond which nothing changes: 1 (primary rays only, a tree of depth 0) without
     // reflective or refractive materials, else the scene's max_depth.

@@ -32,7 +32,7 @@ TEST(SceneFeatures, SeparateGlassObjectsNeedAMediumStackOfOne) {
     EXPECT_EQ(f.glassObjects, 25u);
     EXPECT_FALSE(f.touchingMediaPossible);
     EXPECT_EQ(f.mediumStackDepth, 1u);
-    EXPECT_EQ(f.rayStackDepth, 10u);  // max_depth 10
+    EXPECT_EQ(f.rayStackDepth, 9u);  // max_depth 10
     SceneFeatures cornell = featuresOf("scenes/course/cornell_box2.json");  // one clear_glass sphere
     EXPECT_EQ(cornell.glassObjects, 1u);
     EXPECT_FALSE(cornell.touchingMediaPossible);
@@ -133,10 +133,12 @@ TEST(SceneFeatures, OpenOrBadlyWoundGlassGetsTheWholeMediumStack) {
 TEST(SceneFeatures, PendingRayStackFollowsMaxDepthUpToTheGpuStack) {
     Scene scene = glassScene();
     addGlassBox(scene, {0, 0, 0}, {1, 1, 1});
-    for (std::uint32_t depth : {1u, 2u, 10u, 16u}) {
+    for (std::uint32_t depth : {1u, 2u, 10u, 17u}) {
         scene.settings.maxDepth = depth;
-        EXPECT_EQ(analyseScene(scene).rayStackDepth, depth);
+        EXPECT_EQ(analyseScene(scene).rayStackDepth, depth - 1);
     }
+    scene.settings.maxDepth = 0;
+    EXPECT_EQ(analyseScene(scene).rayStackDepth, 0u);
     scene.settings.maxDepth = 40;
     EXPECT_EQ(analyseScene(scene).rayStackDepth, gpu::kRayStackSize);
 }
