@@ -147,7 +147,7 @@ void finishTrace() {
         return;
     }
     float t = st.traceDirection.w;
-    st.ray.weight.xyz *= beerLambert(mu, t);
+    if (kAbsorption) st.ray.weight.xyz *= beerLambert(mu, t);  // exp(-0 t) is 1 only for finite t: not folded
 
     TriangleVertices tri = loadTriangle(triangle);
     mat3 normals = loadVertexNormals(triangle);
