@@ -389,8 +389,8 @@ void scatterGlass(GpuMaterial m, inout Children children) {
     float r = fresnelReflectance(fresnelModel(), n1, n2, cosI, cos2t);
     if (cos2t < 0.0) gTotalInternalReflections += 1u;
     vec3 w = st.ray.weight.xyz;
-    // The refraction is admitted first, as the CPU reference recursion order and the limits'
-    // counts have it; it waits while the reflection is traced.
+    // Each child passes the depth and weight limits (or is counted); the refraction waits while
+    // the reflection is traced.
     children.hasWaiting = cos2t >= 0.0 && admitChild(depth + 1u, w * (1.0 - r));
     children.waiting = childRay(offsetRayOrigin(through, -facing), refractDirection(d, n, eta, cos2t), w * (1.0 - r),
                                 media, count, depth + 1u);
@@ -466,6 +466,18 @@ void startPixel() {
 #include "suspend.glsl"
 
 #include "statistics.glsl"
+
+// main() fills StatisticSums and the maxima by position, in the order of gpu_types.h's kStat*
+// indices: if that order changes, this stops the build until main() follows it.
+const bool kStatOrderAsFilled =
+    kStatPrimaryRays == 0u && kStatShadowRays == 1u && kStatReflectionRays == 2u && kStatRefractionRays == 3u &&
+    kStatUnfinishedPixels == 4u && kStatLoopLimitSuspected == 5u && kStatTraversalStackOverflow == 6u &&
+    kStatDepthLimitHits == 7u && kStatNodeVisits == 8u && kStatTraversalSteps == 9u && kStatRayStackOverflow == 10u &&
+    kStatMediumStackOverflow == 11u && kStatWeightCuts == 12u && kStatTotalInternalReflections == 13u &&
+    kStatAbsorbedEscapes == 14u && kStatTouchingInterfaces == 15u && kStatInconsistentMedia == 16u &&
+    kStatTouchingProbes == 17u && kStatRestartedSteps == 18u && kStatFirstMax == 19u && kStatMaxPixelSteps == 19u &&
+    kStatMaxRayDepth == 20u && kStatMaxMediumDepth == 21u && kStatCount == 22u;
+const uint kStatOrderCheck[kStatOrderAsFilled ? 1 : -1] = uint[](0u);
 
 void main() {
     params = loadRenderParams();

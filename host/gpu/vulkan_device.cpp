@@ -153,7 +153,7 @@ VulkanDevice::VulkanDevice(const std::string& selector) {
         VkPhysicalDeviceProperties2 properties2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &subgroup};
         vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
         const VkSubgroupFeatureFlags statisticsOperations = VK_SUBGROUP_FEATURE_ARITHMETIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
-        subgroupStatistics_ = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+        subgroupArithmeticAndBallot_ = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
                               (subgroup.supportedOperations & statisticsOperations) == statisticsOperations;
         if (properties_.apiVersion < VK_API_VERSION_1_2)
             throw InputError(std::string("Vulkan device ") + properties_.deviceName + " supports only Vulkan " +

@@ -41,7 +41,7 @@ public:
     // Whether compute shaders may use subgroup arithmetic and ballots (subgroupAdd,
     // subgroupBallot), as trace.comp's statistics do: not a Vulkan 1.2 requirement, though
     // lavapipe and desktop GPUs have both.
-    bool hasSubgroupArithmeticAndBallot() const { return subgroupStatistics_; }
+    bool hasSubgroupArithmeticAndBallot() const { return subgroupArithmeticAndBallot_; }
     // Messages the validation layer sent so far (0 when validation is off).
     std::uint32_t validationMessages() const;
 
@@ -61,7 +61,7 @@ private:
     void endSubmitWait(VkCommandBuffer commands);
 
     VkInstance instance_ = VK_NULL_HANDLE;
-    bool subgroupStatistics_ = false;
+    bool subgroupArithmeticAndBallot_ = false;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties properties_{};

@@ -130,7 +130,7 @@ TEST(SceneFeatures, OpenOrBadlyWoundGlassGetsTheWholeMediumStack) {
     EXPECT_EQ(analyseScene(duplicated).openGlassObjects, 1u);
 }
 
-TEST(SceneFeatures, PendingRayStackFollowsMaxDepthUpToTheGpuStack) {
+TEST(SceneFeatures, PendingRayStackFollowsMaxDepthUpToTheGpuStackWithGlassOnly) {
     Scene scene = glassScene();
     addGlassBox(scene, {0, 0, 0}, {1, 1, 1});
     for (std::uint32_t depth : {1u, 2u, 10u, 17u}) {
@@ -141,6 +141,14 @@ TEST(SceneFeatures, PendingRayStackFollowsMaxDepthUpToTheGpuStack) {
     EXPECT_EQ(analyseScene(scene).rayStackDepth, 0u);
     scene.settings.maxDepth = 40;
     EXPECT_EQ(analyseScene(scene).rayStackDepth, gpu::kRayStackSize);
+    // Mirrors and Phong surfaces reflect, but their one child is traced at once: without glass
+    // no ray ever waits, whatever the depth.
+    for (MaterialModel model : {MaterialModel::Mirror, MaterialModel::Phong}) {
+        scene.materials[0].model = model;
+        SceneFeatures f = analyseScene(scene);
+        EXPECT_TRUE(f.reflection);
+        EXPECT_EQ(f.rayStackDepth, 0u);
+    }
 }
 
 TEST(TraceSpecialization, LambertSceneGetsAKernelWithoutGlassOrStacks) {
