@@ -7,6 +7,7 @@
 const uint kNoTriangle = 0xFFFFFFFFu;
 
 #include "triangle_test.glsl"
+#include "touching.glsl"
 
 // Slab test against (tMin, tMax) (Kay and Kajiya), as host/bvh/bvh_traversal.cpp does it: an axis
 // whose slab distance is NaN (0 * inf: the ray runs in the plane of a face) does not constrain
@@ -24,9 +25,8 @@ bool hitsBox(vec3 boxMin, vec3 boxMax, vec3 origin, vec3 inverseDirection, float
     return enter <= leave;
 }
 
-const uint kTraverseClosest = 0u;  // the closest hit
+const uint kTraverseClosest = 0u;  // the closest hit (and touching.glsl's candidates, when collected)
 const uint kTraverseAny = 1u;      // any hit (shadow rays)
-const uint kTraverseTouching = 2u; // every glass surface of another object (see onTouchingHit)
 
 // A traversal stack entry is a node whose box the ray entered, as gpu_types.h's TraversalNode
 // writes its children: an interior node's index, or a leaf's triangle range (kLeafEntryFlag), so
@@ -76,9 +76,10 @@ void visitInteriorNode(inout uint current, inout uint top, vec3 origin, vec3 dir
 // iteration is one step: a triangle test, an interior node whose two children's boxes it tests
 // (in the manner of Aila and Laine 2009), or taking a leaf off the stack. Returns true when it is
 // over: the closest hit (or, for kTraverseAny, some hit) is in st.traversal.z, its t in
-// st.traceDirection.w and its barycentrics in st.hitUv.zw. kTraverseTouching keeps tMax and
-// hands every hit to onTouchingHit instead. Returns false when the budget ran out first; the
-// state is then back in `st` and a later call resumes it.
+// st.traceDirection.w and its barycentrics in st.hitUv.zw. With the touching probe on, a
+// closest-hit traversal also collects the glass triangles within the touching distance beyond
+// the closest hit (touching.glsl) in st.touching and st.probe. Returns false when the budget ran
+// out first; the state is then back in `st` and a later call resumes it.
 //
 // The ray and the cursor live in locals while it runs, the stack in the private array gStack
 // (trace.comp saves it to traversalStacks[] only when the pixel is suspended mid-traversal).
@@ -95,6 +96,10 @@ bool traverse(uint mode, inout uint steps, uint budget) {
     uint closest = st.traversal.z;
     vec2 barycentrics = st.hitUv.zw;
     uint top = st.control.w;
+    bool collectTouching = kTouchingProbe && mode == kTraverseClosest && params.tuning.z != 0.0;
+    float reach = collectTouching ? params.tuning.y : 0.0;  // boxes and candidates: up to tMax + reach
+    uvec4 touchingObjects = st.touching;
+    vec4 touchingT = st.probe;
     uint current = kNoEntry;  // the entry to visit next, taken off the stack or kept from a visit
     if (top == kFreshTraversal) {
         top = 0u;
@@ -116,7 +121,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
                 current = gStack[top];
             }
             if ((current & kLeafEntryFlag) == 0u)
-                visitInteriorNode(current, top, origin, direction, inverseDirection, tMin, tMax);
+                visitInteriorNode(current, top, origin, direction, inverseDirection, tMin, tMax + reach);
             // A leaf, popped or just entered, is taken in the same iteration.
             if (current != kNoEntry && (current & kLeafEntryFlag) != 0u) {
                 cursor = (current & ~kLeafEntryFlag) >> 4;
@@ -131,10 +136,13 @@ bool traverse(uint mode, inout uint steps, uint budget) {
             cursor += 1u;
             TriangleVertices tri = loadTriangle(triangle);
             vec3 hit = intersectTriangle(tri, origin, direction);
-            if (hit.x > tMin && hit.x < tMax) {
-                if (kTouchingProbe && mode == kTraverseTouching) {
-                    onTouchingHit(tri, hit.x);
-                } else {
+            if (hit.x > tMin && hit.x < tMax + reach) {
+                if (collectTouching && floatBitsToUint(tri.v2.w) == kTriangleGlass) {
+                    bool entering = dot(direction, cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz)) < 0.0;
+                    addTouchingCandidate(touchingObjects, touchingT, floatBitsToUint(tri.v1.w), entering, hit.x,
+                                         tMax + reach);
+                }
+                if (hit.x < tMax) {
                     tMax = hit.x;
                     closest = triangle;
                     barycentrics = hit.yz;
@@ -155,6 +163,10 @@ bool traverse(uint mode, inout uint steps, uint budget) {
     st.traversal.xyz = uvec3(cursor, leafEnd, closest);
     st.hitUv.zw = barycentrics;
     st.control.w = top;
+    if (collectTouching) {
+        st.touching = touchingObjects;
+        st.probe = touchingT;
+    }
     return over;
 }
 

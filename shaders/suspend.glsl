@@ -65,7 +65,7 @@ void unpackState() {
 // Whether the pixel is inside a BVH traversal that has a stack (begun and not fresh).
 bool inTraversal() {
     uint phase = st.control.x;
-    return (phase == kPhaseTrace || phase == kPhaseShadow || phase == kPhaseTouching) && st.control.w != kFreshTraversal;
+    return (phase == kPhaseTrace || phase == kPhaseShadow) && st.control.w != kFreshTraversal;
 }
 
 // The first dispatch's verdict on the pixel in `slot`.

@@ -28,6 +28,7 @@ uint gTraversalOverflows = 0u;
 
 uint gTouchingInterfaces = 0u;
 uint gTouchingProbes = 0u;
+uint gMediumStackOverflows = 0u;
 
 // This pixel's pending rays: pendingRays[pendingBase .. pendingBase + kPendingRayCapacity).
 uint pendingBase = 0u;
@@ -36,10 +37,6 @@ uint pendingBase = 0u;
 // the middle of a traversal keeps it in traversalStacks[stackBase .. stackBase + kTraversalStackSize).
 uint stackBase = 0u;
 uint gStack[kTraversalStackSize];
-
-// A surface the touching probe found: a glass surface of another object than the one hit, at
-// (nearly) the same point. Recorded once per object, at most 3.
-void onTouchingHit(TriangleVertices tri, float t);
 
 #include "bvh.glsl"
 #include "camera.glsl"
@@ -55,7 +52,6 @@ const uint kPhaseShadow = 3u;       // any-hit traversal towards light st.contro
 const uint kPhaseScatter = 4u;      // spawn reflected / refracted rays
 const uint kPhaseNextRay = 5u;      // pop a pending ray, or finish the sample
 const uint kPhaseDone = 6u;
-const uint kPhaseTouching = 7u;     // find other glass surfaces touching a glass hit
 
 uint gPrimaryRays = 0u;
 uint gShadowRays = 0u;
@@ -63,7 +59,6 @@ uint gReflectionRays = 0u;
 uint gRefractionRays = 0u;
 uint gDepthLimitHits = 0u;
 uint gRayStackOverflows = 0u;
-uint gMediumStackOverflows = 0u;
 uint gWeightCuts = 0u;
 uint gTotalInternalReflections = 0u;
 uint gAbsorbedEscapes = 0u;
@@ -90,6 +85,16 @@ vec3 mediumAttenuation(PendingRay r) {
     return count == 0u ? vec3(0.0) : loadMaterial(objectMaterial(r.media[count - 1u])).attenuation.xyz;
 }
 
+// A closest-hit traversal of st.ray, with no touching candidates yet (touching.glsl).
+void beginClosestTraversal() {
+    if (kTouchingProbe) {
+        st.touching = uvec4(0u);
+        st.probe = vec4(kNoCandidate);
+    }
+    beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 0.0, 3.0e38);
+    st.control.x = kPhaseTrace;
+}
+
 void startPrimaryRay() {
     uvec2 pixel = params.tile.xy + gl_GlobalInvocationID.xy;
     uint pixelIndex = pixel.y * params.image.x + pixel.x;
@@ -108,26 +113,7 @@ void startPrimaryRay() {
         return;
     }
     gPrimaryRays += 1u;
-    beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 0.0, 3.0e38);
-    st.control.x = kPhaseTrace;
-}
-
-void onTouchingHit(TriangleVertices tri, float t) {
-    uint object = floatBitsToUint(tri.v1.w);
-    if (materialModel(loadMaterial(floatBitsToUint(tri.v0.w))) != kMaterialGlass || object == hitObject()) return;
-    uint count = st.touching.w;
-    if ((count > 0u && (st.touching.x & 0x7FFFFFFFu) == object) ||
-        (count > 1u && (st.touching.y & 0x7FFFFFFFu) == object) ||
-        (count > 2u && (st.touching.z & 0x7FFFFFFFu) == object))
-        return;
-    if (count >= 3u) {
-        gMediumStackOverflows += 1u;  // a fourth touching object: ignored, but never silently
-        return;
-    }
-    bool entering = dot(st.ray.direction.xyz, cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz)) < 0.0;
-    st.touching[count] = object | (entering ? 0x80000000u : 0u);
-    st.touching.w = count + 1u;
-    st.probe.x = max(st.probe.x, t);
+    beginClosestTraversal();
 }
 
 // The closest-hit traversal of st.ray is over: record the hit or take the background.
@@ -178,18 +164,17 @@ void finishTrace() {
 
     uint model = materialModel(loadMaterial(hitMaterial()));
     if (usesMaterial(kMaterialGlass) && model == kMaterialGlass) {
-        st.touching = uvec4(0u);
-        st.probe.x = t;
+        // Touching objects (lecture, "Problematic Cases"): the other glass surfaces within the
+        // touching distance of this hit along the ray, which the traversal collected.
+        float farthest = t;
+        uvec4 touching = uvec4(0u);
         if (kTouchingProbe && params.tuning.z != 0.0) {
-            // Touching objects (lecture, "Problematic Cases"): look for other glass surfaces
-            // within the touching distance of this hit along the ray.
-            float tolerance = params.tuning.y;
             gTouchingProbes += 1u;
-            beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, max(0.0, t - tolerance), t + tolerance);
-            st.control.x = kPhaseTouching;
-        } else {
-            st.control.x = kPhaseScatter;
+            touching = selectTouching(st.touching, st.probe, t + params.tuning.y, hitObject(), farthest);
         }
+        st.touching = touching;
+        st.probe.x = farthest;
+        st.control.x = kPhaseScatter;
         return;
     }
     // Opaque: both normals face the incoming ray.
@@ -407,8 +392,7 @@ bool spawnsRays() {
 
 void beginRay() {
     gMaxRayDepth = max(gMaxRayDepth, rayDepth(st.ray));
-    beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 0.0, 3.0e38);
-    st.control.x = kPhaseTrace;
+    beginClosestTraversal();
 }
 
 // The hit's children: the one traced next goes on at once as st.ray, and only a refraction whose
@@ -504,14 +488,10 @@ void main() {
     while (st.control.x != kPhaseDone && steps < budget) {
         steps += 1u;
         uint phase = st.control.x;
-        if (phase == kPhaseTrace || phase == kPhaseShadow || phase == kPhaseTouching) {
-            uint mode = kShadowRays && phase == kPhaseShadow
-                            ? kTraverseAny
-                            : (kTouchingProbe && phase == kPhaseTouching ? kTraverseTouching : kTraverseClosest);
-            if (!traverse(mode, steps, budget)) break;
+        if (phase == kPhaseTrace || phase == kPhaseShadow) {
+            if (!traverse(kShadowRays && phase == kPhaseShadow ? kTraverseAny : kTraverseClosest, steps, budget)) break;
             if (phase == kPhaseShadow) finishShadow();
-            else if (phase == kPhaseTrace) finishTrace();
-            else st.control.x = kPhaseScatter;
+            else finishTrace();
         }
         // The hit's material, read once for the phases that follow (only lanes at a hit use it).
         uint shadingPhase = st.control.x;

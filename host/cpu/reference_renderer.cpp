@@ -308,7 +308,7 @@ private:
         // Entering or leaving the object is decided by the geometric normal of the consistently
         // wound, closed mesh (lecture, "Problematic Cases", assumption 1).
         const bool entering = glm::dot(d, hit.geometricNormal) < Real(0);
-        std::vector<Crossing> crossings{{hit.object, entering}};
+        std::vector<Crossing> crossings{{hit.object, entering, hit.t}};
         Real farT = hit.t;
         if (touchingPossible_) findTouchingCrossings(hit, rayOrigin, d, crossings, farT, counters);
 
@@ -360,12 +360,14 @@ private:
     struct Crossing {
         std::uint32_t object;
         bool entering;
+        Real t;
     };
 
     // Touching objects (lecture, "Problematic Cases": "Two objects have one or more contact
     // points"): glass surfaces of other objects crossed within a scene-scale tolerance of the hit
     // form one interface with it (render model, "Media"), e.g. glass -> glass at P2, never
-    // glass -> air -> glass. Appends one crossing per other object; farT becomes the farthest.
+    // glass -> air -> glass. Appends one crossing per other object, at its nearest glass triangle
+    // there, nearest first (ties: the lower object index first); farT becomes the farthest.
     void findTouchingCrossings(const Hit& hit, const Vec3& rayOrigin, const Vec3& d, std::vector<Crossing>& crossings,
                                Real& farT, TraceCounters& counters) const {
         thread_local std::vector<TriangleHit<Real>> hits;
@@ -373,18 +375,23 @@ private:
         counters.touchingProbes += 1;
         const Ray<Real> probe{rayOrigin, d, std::max(Real(0), hit.t - touchTolerance_), hit.t + touchTolerance_};
         traceAll<Real>(bvh_.nodes, vertices_, probe, hits, &counters.traversal);
+        const std::size_t first = crossings.size();
         for (const TriangleHit<Real>& h : hits) {
             const Triangle& tri = scene_.triangles[bvh_.triangleOrder[h.triangle]];
-            if (scene_.materials[tri.material].model != MaterialModel::Glass) continue;
-            const bool known = std::any_of(crossings.begin(), crossings.end(),
-                                           [&](const Crossing& c) { return c.object == tri.object; });
-            if (known) continue;
+            if (scene_.materials[tri.material].model != MaterialModel::Glass || tri.object == hit.object) continue;
             const gpu::TriangleVertices& tv = vertices_[h.triangle];
             const Vec3 v0(tv.v0);
             const Vec3 ng = glm::cross(Vec3(tv.v1) - v0, Vec3(tv.v2) - v0);
-            crossings.push_back({tri.object, glm::dot(d, ng) < Real(0)});
-            farT = std::max(farT, h.t);
+            const Crossing crossing{tri.object, glm::dot(d, ng) < Real(0), h.t};
+            const auto known = std::find_if(crossings.begin() + first, crossings.end(),
+                                            [&](const Crossing& c) { return c.object == tri.object; });
+            if (known == crossings.end()) crossings.push_back(crossing);
+            else if (h.t < known->t) *known = crossing;
         }
+        std::sort(crossings.begin() + first, crossings.end(), [](const Crossing& a, const Crossing& b) {
+            return a.t < b.t || (a.t == b.t && a.object < b.object);
+        });
+        for (auto it = crossings.begin() + first; it != crossings.end(); ++it) farT = std::max(farT, it->t);
     }
 
     // IOR of the medium a ray is in: the innermost object's, or the scene's air.

@@ -21,6 +21,10 @@ PackedScene packScene(const Scene& scene, const Bvh& bvh) {
     PackedScene packed;
     packed.bvh = makeTraversalNodes(bvh.nodes);
     packed.vertices = packTriangleVertices(bvh, scene.triangles);
+    for (std::size_t i = 0; i < packed.vertices.size(); ++i) {
+        const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
+        if (scene.materials[t.material].model == MaterialModel::Glass) packed.vertices[i].v2.w = bits(gpu::kTriangleGlass);
+    }
     packed.shading.reserve(bvh.triangleOrder.size());
     for (std::uint32_t index : bvh.triangleOrder) {
         const Triangle& t = scene.triangles[index];

@@ -55,7 +55,10 @@ VITRUM_CONST uint kTraversalStackSize = 64u;
 
 // ---- Triangles (in BVH leaf order) -----------------------------------------------------------
 // Positions for intersection. v0.w = material index bits, v1.w = object index bits (the closed
-// mesh the triangle belongs to; it encloses a medium when its material is glass).
+// mesh the triangle belongs to; it encloses a medium when its material is glass), v2.w =
+// kTriangleGlass bits when the material is glass (else 0), so that the traversal can tell touching
+// glass surfaces without reading materials (shaders/touching.glsl).
+VITRUM_CONST uint kTriangleGlass = 1u;
 struct TriangleVertices {
     vec4 v0;
     vec4 v1;
@@ -190,9 +193,11 @@ struct TraceState {
     uvec4 control;                       // phase, pending rays, current light, traversal stack entries
     uvec4 traversal;                     // leaf cursor, leaf end, closest triangle, pixel's steps
     uvec4 touching;                      // other objects' glass surfaces at the hit: object | entering
-                                         // << 31, up to 3; .w = how many
+                                         // << 31, up to 3; .w = how many. During a closest-hit
+                                         // traversal: touching.glsl's candidate objects
     vec4 probe;                          // .x = farthest touching surface's t; .yzw = the direct
-                                         // light a pending shadow ray adds if unoccluded
+                                         // light a pending shadow ray adds if unoccluded. During a
+                                         // closest-hit traversal: the candidates' t
 };
 
 // ---- Render statistics (storage buffer of uints, one counter each) -----------------------------
@@ -216,7 +221,7 @@ VITRUM_CONST uint kStatTotalInternalReflections = 13u;
 VITRUM_CONST uint kStatAbsorbedEscapes = 14u;    // rays leaving the scene inside an absorbing medium
 VITRUM_CONST uint kStatTouchingInterfaces = 15u; // glass hits where other objects' surfaces touch
 VITRUM_CONST uint kStatInconsistentMedia = 16u;  // a ray left an object it was not inside
-VITRUM_CONST uint kStatTouchingProbes = 17u;     // touching probes run (traversals around a glass hit)
+VITRUM_CONST uint kStatTouchingProbes = 17u;     // glass hits whose touching surfaces were looked for
 VITRUM_CONST uint kStatRestartedSteps = 18u;     // steps of first attempts given up (see kResumable)
 // The counters from kStatFirstMax on are maxima (atomicMax), the others sums.
 VITRUM_CONST uint kStatFirstMax = 19u;
