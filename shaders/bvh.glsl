@@ -6,6 +6,7 @@
 
 const uint kNoTriangle = 0xFFFFFFFFu;
 
+#include "lanes.glsl"
 #include "triangle_test.glsl"
 #include "touching.glsl"
 
@@ -72,7 +73,9 @@ void visitInteriorNode(inout uint current, inout uint top, vec3 origin, vec3 dir
     }
 }
 
-// Runs the traversal begun by beginTraversal for at most `budget - steps` steps. Each loop
+// Runs the traversal begun by beginTraversal while the SIMD group has run fewer than `budget`
+// steps. `steps` is the group's count: the same in all its lanes on entry, and on return the
+// group's count in the lane that traversed longest (trace.comp takes the maximum). Each loop
 // iteration is one step: a triangle test, an interior node whose two children's boxes it tests
 // (in the manner of Aila and Laine 2009), or taking a leaf off the stack. Returns true when it is
 // over: the closest hit (or, for kTraverseAny, some hit) is in st.traversal.z, its t in
@@ -108,10 +111,17 @@ bool traverse(uint mode, inout uint steps, uint budget) {
     bool over = false;
     // Aila and Laine's "while-while": inner nodes until every lane of the SIMD group holds a leaf
     // (or is done), then that leaf's triangles, so that one loop iteration is one kind of work.
+    // lavapipe counts the group's iterations against its limit, not a lane's: lanes that finish
+    // a loop early wait for the others, and a loop runs one more iteration than its longest lane
+    // (the one in which the last lane leaves). So each inner loop adds the most iterations any
+    // lane ran in it, plus one, to `steps`, which stays the same in all lanes still in the outer
+    // loop. gPixelSteps counts the iterations this lane ran.
     while (!over && steps < budget) {
         steps += 1u;
-        while (cursor >= leafEnd && steps < budget) {
-            steps += 1u;
+        gPixelSteps += 1u;
+        uint nodeSteps = 0u;
+        while (cursor >= leafEnd && steps + nodeSteps < budget) {
+            nodeSteps += 1u;
             if (current == kNoEntry) {
                 if (top == 0u) {
                     over = true;
@@ -130,8 +140,11 @@ bool traverse(uint mode, inout uint steps, uint budget) {
                 break;
             }
         }
-        while (cursor < leafEnd && steps < budget) {
-            steps += 1u;
+        gPixelSteps += nodeSteps;
+        steps += groupMax(nodeSteps) + 1u;  // + the iteration that finds every lane done
+        uint triangleSteps = 0u;
+        while (cursor < leafEnd && steps + triangleSteps < budget) {
+            triangleSteps += 1u;
             uint triangle = cursor;
             cursor += 1u;
             TriangleVertices tri = loadTriangle(triangle);
@@ -153,7 +166,10 @@ bool traverse(uint mode, inout uint steps, uint budget) {
                 }
             }
         }
+        gPixelSteps += triangleSteps;
+        steps += groupMax(triangleSteps) + 1u;
     }
+    steps += 1u;  // the outer loop's last test
     // Suspended: the entry in hand goes back on the stack (pushes leave it a free slot).
     if (!over && current != kNoEntry) {
         gStack[top] = current;

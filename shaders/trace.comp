@@ -1,9 +1,10 @@
 #version 460
 // The ray tree of docs/render-model.md, one pixel per invocation, for one tile of the image.
 //
-// lavapipe silently ends a shader's loops after 65,535 iterations. So every loop iteration of
-// this kernel is one small counted step (one BVH node, one leaf, one triangle, or one round of
-// shading, see main). A dispatch runs at most `params.counts.w` steps per pixel. The first
+// lavapipe silently ends a shader's loops after 65,535 iterations of a SIMD group. So every loop
+// iteration of this kernel is one small counted step (one BVH node, one leaf, one triangle, or one
+// round of shading, see main), counted for the group (bvh.glsl's traverse). A dispatch runs at
+// most `params.counts.w` steps per group. The first
 // dispatch of a tile gives up the pixels that are not done by then; the resumable build of this
 // kernel (kResumable) restarts them and keeps their state between its dispatches (suspend.glsl),
 // and the host dispatches it until every pixel of the tile is done. Nothing recurses.
@@ -23,6 +24,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 TraceState st;
 
 // Counters of this invocation, added to stats[] once at the end.
+uint gPixelSteps = 0u;  // loop iterations this pixel's lane ran (was active in)
 uint gNodeVisits = 0u;
 uint gTraversalOverflows = 0u;
 
@@ -480,19 +482,23 @@ void main() {
     // iteration therefore runs one traversal (a loop of its own that walks only the BVH) and then
     // takes the pixel through every shading phase that is due, in the order they follow each
     // other, up to the start of the next traversal: each ray of the tree costs one iteration of
-    // shading code, not one per phase. Every loop counts against one budget of steps, far below
-    // lavapipe's 65,535 iterations.
+    // shading code, not one per phase. Every loop counts against one budget of steps below
+    // lavapipe's 65,535 iterations, which it counts for the SIMD group, not the lane: `steps` is
+    // the group's count, the same in all its lanes at the top of this loop.
     uint budget = params.counts.w;
     uint steps = 0u;
     if (st.control.x == kPhaseStartSample) startSample();
     while (st.control.x != kPhaseDone && steps < budget) {
         steps += 1u;
+        gPixelSteps += 1u;
         uint phase = st.control.x;
-        if (phase == kPhaseTrace || phase == kPhaseShadow) {
-            if (!traverse(kShadowRays && phase == kPhaseShadow ? kTraverseAny : kTraverseClosest, steps, budget)) break;
-            if (phase == kPhaseShadow) finishShadow();
-            else finishTrace();
-        }
+        bool traced = true;
+        if (phase == kPhaseTrace || phase == kPhaseShadow)
+            traced = traverse(kShadowRays && phase == kPhaseShadow ? kTraverseAny : kTraverseClosest, steps, budget);
+        steps = groupMax(steps);  // the lane that traversed longest has the group's count
+        if (!traced) break;
+        if (phase == kPhaseShadow) finishShadow();
+        else if (phase == kPhaseTrace) finishTrace();
         // The hit's material, read once for the phases that follow (only lanes at a hit use it).
         uint shadingPhase = st.control.x;
         GpuMaterial m = loadMaterial(shadingPhase == kPhaseNextLight || shadingPhase == kPhaseScatter ? hitMaterial() : 0u);
@@ -502,7 +508,7 @@ void main() {
         if (st.control.x == kPhaseStartSample) startSample();
     }
 
-    st.traversal.w += steps;
+    st.traversal.w += gPixelSteps;
     bool done = st.control.x == kPhaseDone;
     if (done) pixels[pixel.y * params.image.x + pixel.x] = vec4(st.accumulated.xyz / float(params.image.z), 1.0);
     if (kResumable) suspendState(slot, !done);
@@ -515,12 +521,12 @@ void main() {
     StatisticSums sums;
     sums.v0 = uvec4(gPrimaryRays, gShadowRays, gReflectionRays, gRefractionRays);
     sums.v1 = uvec4(0u, 0u, gTraversalOverflows, gDepthLimitHits);
-    sums.v2 = uvec4(gNodeVisits, steps, gRayStackOverflows, gMediumStackOverflows);
+    sums.v2 = uvec4(gNodeVisits, gPixelSteps, gRayStackOverflows, gMediumStackOverflows);
     sums.v3 = uvec4(gWeightCuts, gTotalInternalReflections, gAbsorbedEscapes, gTouchingInterfaces);
     sums.v4 = uvec4(gInconsistentMedia, gTouchingProbes, 0u, 0u);
     uvec3 maxima = uvec3(done ? st.traversal.w : 0u, gMaxRayDepth, gMaxMediumDepth);
     if (!counted) {
-        sums = StatisticSums(uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u, 0u, steps, 0u));  // kStatRestartedSteps
+        sums = StatisticSums(uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u, 0u, gPixelSteps, 0u));  // kStatRestartedSteps
         maxima = uvec3(0u);
     }
     if (!done) sums.v1.xy = uvec2(1u, steps < budget ? 1u : 0u);  // kStatUnfinishedPixels, kStatLoopLimitSuspected

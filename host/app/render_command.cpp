@@ -48,8 +48,8 @@ Renders SCENE (a .json scene file or a bare .obj) and writes OUT: .png (8-bit sR
   --light X,Y,Z            a white point light; repeatable; replaces the scene's lights
   --background R,G,B       constant background colour, linear RGB
   --stats FILE.json        write device, times by phase, rays by kind and limits hit
-  --iteration-budget N     GPU loop steps per pixel and dispatch (default 16384; lavapipe
-                           silently stops loops at 65,535)
+  --iteration-budget N     GPU loop steps per subgroup (8 pixels on lavapipe) and dispatch
+                           (default 49152; lavapipe silently stops loops at 65,535)
   --tile N                 GPU tile size in pixels (default 256)
   --no-specialize          GPU: the general kernel instead of one built for what the scene
                            needs (same image; for comparison, docs/specialization.md)

@@ -1,5 +1,5 @@
 // The Vulkan backend: uploads a packed scene, then renders the image tile by tile. Each tile is
-// dispatched again and again, each dispatch bounded to `iterationBudget` steps per pixel, until
+// dispatched again and again, each dispatch bounded to `iterationBudget` steps per SIMD group, until
 // every pixel of the tile has finished its ray tree (shaders/trace.comp explains why).
 #pragma once
 
@@ -15,9 +15,10 @@
 namespace vitrum {
 
 struct VulkanRenderOptions {
-    // Loop steps per pixel and dispatch. lavapipe ends any shader loop after 65,535 iterations;
-    // this stays far below. Larger values (tests only) let the driver's limit show.
-    std::uint32_t iterationBudget = 16384;
+    // Loop steps per SIMD group and dispatch: lavapipe ends a shader's loops after 65,535
+    // iterations of the group, and the kernel counts those (trace.comp); three quarters of the
+    // limit leave room for rounding in that count. Larger values (tests only) let the limit show.
+    std::uint32_t iterationBudget = 49152;
     std::uint32_t tileSize = 256;  // pixels per side; a pixel's trace state is 0.5-1.5 KiB
     // Build the kernel for what the scene needs (render/trace_specialization.h); false: the
     // general kernel, which decides everything at run time (same image, more code to run).

@@ -138,7 +138,7 @@ struct RenderParams {
     vec4 cameraZ;      // .xyz = z_c (points from the target back to the camera)
     vec4 background;   // .xyz = constant background colour; .w = air IOR
     uvec4 image;       // width, height, samples per pixel, max depth
-    uvec4 counts;      // light count, fresnel model, texture count, iteration budget per dispatch
+    uvec4 counts;      // light count, fresnel model, texture count, iteration budget per SIMD group and dispatch
     uvec4 tile;        // tile origin x, tile origin y, tile width, tile height
     uvec4 pass;        // x: unused; y = columns of the stratified sample grid (rows = spp / columns)
     vec4 tuning;       // x = min weight, y = distance within which surfaces touch (1e-5 x scene
