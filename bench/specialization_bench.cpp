@@ -122,7 +122,7 @@ int run(int argc, char** argv) {
                           (1024.0 * 1024.0), 1)
              << " | " << general.stats.touchingProbes - special.stats.touchingProbes << " | "
              << (k.shadowRays ? "" : "shadow rays, ") << (k.absorption ? "" : "absorption, ")
-             << (k.touchingProbe ? "" : "touching probe, ") << (k.textures ? "" : "textures, ")
+             << (k.touchingProbe ? "" : "touching surfaces, ") << (k.textures ? "" : "textures, ")
              << (k.materialModels >> 4 & 1u ? "" : "glass, ") << "other backgrounds |\n";
     }
     fs::remove_all(cacheRoot);
@@ -145,13 +145,13 @@ int run(int argc, char** argv) {
            << rows.str() << "\n"
            << "## Work skipped\n\n"
            << "Rays traced are the same for both kernels (the tests check it); the specialized kernel's stacks are "
-              "sized to what the scene can reach, its code lacks what the scene cannot need, and it runs no touching "
-              "probe where no two glass objects' boxes overlap. State is the trace state, the traversal stack "
+              "sized to what the scene can reach, its code lacks what the scene cannot need, and it looks for no touching "
+              "surfaces where no two glass objects' boxes overlap. State is the trace state, the traversal stack "
               "and the pending rays of one pixel; a tile is "
            << VulkanRenderOptions{}.tileSize << "x" << VulkanRenderOptions{}.tileSize
            << " pixels, clipped to the image.\n\n"
            << "| scene | rays | medium stack | pending-ray stack | state bytes a pixel | state MiB a tile saved | "
-              "touching probes not run | code removed |\n"
+              "glass hits not examined for touching | code removed |\n"
            << "|---|---:|---:|---:|---:|---:|---:|---|\n"
            << work.str();
     std::cerr << "wrote " << out << "\n";

@@ -4,10 +4,10 @@
 // lavapipe silently ends a shader's loops after 65,535 iterations of a SIMD group. So every loop
 // iteration of this kernel is one small counted step (one BVH node, one leaf, one triangle, or one
 // round of shading, see main), counted for the group (bvh.glsl's traverse). A dispatch runs at
-// most `params.counts.w` steps per group. The first
-// dispatch of a tile gives up the pixels that are not done by then; the resumable build of this
-// kernel (kResumable) restarts them and keeps their state between its dispatches (suspend.glsl),
-// and the host dispatches it until every pixel of the tile is done. Nothing recurses.
+// most `params.counts.w` steps per group. The first dispatch of a tile gives up the pixels that
+// are not done by then; the resumable build of this kernel (kResumable) restarts them and keeps
+// their state between its dispatches (suspend.glsl), and the host dispatches it until every pixel
+// of the tile is done. Nothing recurses.
 #extension GL_GOOGLE_include_directive : require
 // The default build sums its statistics over each subgroup before adding them up atomically; the
 // build with VITRUM_ATOMIC_STATISTICS (trace_atomic_statistics.spv.h) is for devices without
