@@ -3,27 +3,30 @@
 #ifndef VITRUM_BINDINGS_GLSL
 #define VITRUM_BINDINGS_GLSL
 
-layout(set = 0, binding = 0) uniform usamplerBuffer paramTexels;  // one RenderParams
-// The scene's geometry, materials, lights and object media are uniform texel buffers of uvec4
-// texels (gpu_types.h: kTraversalNodeTexels and the others), read with texelFetch: on lavapipe a fetch
-// is a vector gather, while every storage-buffer access is a loop over the 8 lanes (it made the
-// plain baseline kernel 2x faster, docs/performance.md).
-layout(set = 0, binding = 1) uniform usamplerBuffer nodeTexels;
-layout(set = 0, binding = 2) uniform usamplerBuffer vertexTexels;
-layout(set = 0, binding = 3) uniform usamplerBuffer shadingTexels;
-layout(set = 0, binding = 4) uniform usamplerBuffer materialTexels;
-layout(set = 0, binding = 5) uniform usamplerBuffer lightTexels;
+layout(set = 0, binding = 0, rgba32ui) uniform readonly uimageBuffer paramTexels;  // one RenderParams
+// The parameters and the scene's geometry, materials, lights and object media are storage texel
+// buffers of uvec4 texels (gpu_types.h: kTraversalNodeTexels and the others), read with imageLoad.
+// On lavapipe every storage-buffer access is a loop over the 8 lanes, with a branch a lane, while
+// a texel read is one 16-byte load a lane: texel buffers made the plain baseline kernel 2x faster
+// (docs/performance.md). And an imageLoad is compiled into the kernel, while a uniform texel
+// buffer's texelFetch is a call to a function of its own, around which every live vector register
+// is saved and restored: imageLoad made the kernel 3-12% faster (docs/gpu-design.md).
+layout(set = 0, binding = 1, rgba32ui) uniform readonly uimageBuffer nodeTexels;
+layout(set = 0, binding = 2, rgba32ui) uniform readonly uimageBuffer vertexTexels;
+layout(set = 0, binding = 3, rgba32ui) uniform readonly uimageBuffer shadingTexels;
+layout(set = 0, binding = 4, rgba32ui) uniform readonly uimageBuffer materialTexels;
+layout(set = 0, binding = 5, rgba32ui) uniform readonly uimageBuffer lightTexels;
 layout(std430, set = 0, binding = 6) readonly buffer Textures { TextureInfo textures[]; };
 layout(std430, set = 0, binding = 7) readonly buffer Texels { float texels[]; };  // RGB, packed
-layout(set = 0, binding = 8) uniform usamplerBuffer objectMaterialTexels;
+layout(set = 0, binding = 8, rgba32ui) uniform readonly uimageBuffer objectMaterialTexels;
 layout(std430, set = 0, binding = 9) writeonly buffer Pixels { vec4 pixels[]; };
 layout(std430, set = 0, binding = 10) buffer States { uvec4 stateTexels[]; };  // TraceStates, see suspend.glsl
 layout(std430, set = 0, binding = 11) buffer Stats { uint stats[]; };
 layout(std430, set = 0, binding = 12) buffer PendingRays { PendingRay pendingRays[]; };  // kPendingRayCapacity a pixel
 layout(std430, set = 0, binding = 13) buffer TraversalStacks { uint traversalStacks[]; };  // kTraversalStackSize a pixel
 
-// Texel k of the struct at `first`.
-vec4 fetchVec4(usamplerBuffer texels, uint first, uint k) { return uintBitsToFloat(texelFetch(texels, int(first + k))); }
+// Texel k of the struct at `first` (a macro: GLSL functions cannot take the images' format).
+#define fetchVec4(texels, first, k) uintBitsToFloat(imageLoad(texels, int((first) + (k))))
 
 // The render parameters, read once at the start of main(). Not a uniform buffer: lavapipe
 // recompiles a kernel for the values of uniforms that decide branches ("inlining") at every
@@ -37,14 +40,14 @@ RenderParams loadRenderParams() {
     p.cameraY = fetchVec4(paramTexels, 0u, 2u);
     p.cameraZ = fetchVec4(paramTexels, 0u, 3u);
     p.background = fetchVec4(paramTexels, 0u, 4u);
-    p.image = texelFetch(paramTexels, 5);
-    p.counts = texelFetch(paramTexels, 6);
-    p.tile = texelFetch(paramTexels, 7);
-    p.pass = texelFetch(paramTexels, 8);
+    p.image = imageLoad(paramTexels, 5);
+    p.counts = imageLoad(paramTexels, 6);
+    p.tile = imageLoad(paramTexels, 7);
+    p.pass = imageLoad(paramTexels, 8);
     p.tuning = fetchVec4(paramTexels, 0u, 9u);
-    p.environment = texelFetch(paramTexels, 10);
+    p.environment = imageLoad(paramTexels, 10);
     p.offsets = fetchVec4(paramTexels, 0u, 11u);
-    p.bvh = texelFetch(paramTexels, 12);
+    p.bvh = imageLoad(paramTexels, 12);
     return p;
 }
 
@@ -89,7 +92,7 @@ GpuLight loadLight(uint i) {
 
 // The material whose medium closed object `object` encloses.
 uint objectMaterial(uint object) {
-    return texelFetch(objectMaterialTexels, int(object / kObjectMaterialsPerTexel))[object % kObjectMaterialsPerTexel];
+    return imageLoad(objectMaterialTexels, int(object / kObjectMaterialsPerTexel))[object % kObjectMaterialsPerTexel];
 }
 
 #endif

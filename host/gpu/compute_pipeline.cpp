@@ -96,7 +96,8 @@ void ComputePipeline::bind(std::span<const GpuBuffer* const> buffers) {
             .descriptorCount = 1,
             .descriptorType = bindings_[b],
         };
-        if (bindings_[b] == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
+        if (bindings_[b] == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER ||
+            bindings_[b] == VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER) {
             if (buffers[b]->texelView() == VK_NULL_HANDLE)
                 throw std::logic_error("ComputePipeline::bind: binding " + std::to_string(b) + " needs a texel buffer");
             writes[b].pTexelBufferView = &views[b];

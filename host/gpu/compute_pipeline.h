@@ -19,8 +19,8 @@ public:
     ComputePipeline(const VulkanDevice& device, std::span<const std::uint32_t> spirv,
                     std::span<const VkDescriptorType> bindings, const VkSpecializationInfo* specialization = nullptr);
 
-    // Points binding i of the descriptor set at buffers[i] (at its texel view for a uniform texel
-    // buffer binding).
+    // Points binding i of the descriptor set at buffers[i] (at its texel view for a uniform or
+    // storage texel buffer binding).
     void bind(std::span<const GpuBuffer* const> buffers);
     // Records the dispatch and a barrier that makes its writes visible to the host.
     void record(VkCommandBuffer commands, std::uint32_t groupsX, std::uint32_t groupsY = 1) const;

@@ -50,7 +50,8 @@ GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsag
     : device_(device.device()), size_(size) {
     if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && size > bufferLimit(device, BufferKind::Storage).bytes)
         throw bufferTooLarge(device, what, size, BufferKind::Storage);
-    if ((usage & VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT) && size > bufferLimit(device, BufferKind::Texel).bytes)
+    if ((usage & (VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT)) &&
+        size > bufferLimit(device, BufferKind::Texel).bytes)
         throw bufferTooLarge(device, what, size, BufferKind::Texel);
     VkBufferCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
@@ -86,7 +87,7 @@ void GpuBuffer::makeTexelView() {
     VkBufferViewCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO,
         .buffer = buffer_.get(),
-        .format = VK_FORMAT_R32G32B32A32_UINT,  // its uniform texel buffer support is required by Vulkan
+        .format = VK_FORMAT_R32G32B32A32_UINT,  // Vulkan requires its uniform and storage texel buffer support
         .offset = 0,
         .range = VK_WHOLE_SIZE,
     };

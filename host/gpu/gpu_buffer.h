@@ -67,15 +67,17 @@ std::string describeBytes(VkDeviceSize bytes);
 // "the scene does not fit the device: WHAT needs N MiB, but DEVICE allows M MiB per storage buffer (...)"
 InputError bufferTooLarge(const VulkanDevice& device, const std::string& what, VkDeviceSize size, BufferKind kind);
 
-// A uniform texel buffer of R32G32B32A32_UINT texels (a usamplerBuffer in GLSL) holding `data`,
-// whose size must be a multiple of 16 bytes. On lavapipe a texel fetch is a vector gather, while
-// every storage-buffer access is a loop over the lanes: the scene's geometry, materials and
-// lights are read this way. Checks the size against the device's maxTexelBufferElements first.
+// A texel buffer of R32G32B32A32_UINT texels holding `data`, whose size must be a multiple of 16
+// bytes, for reading as a storage texel buffer (a readonly uimageBuffer, how trace.comp reads the
+// scene: shaders/bindings.glsl) or as a uniform texel buffer (a usamplerBuffer, as the plain
+// baseline of bench/baseline does). Checks the size against the device's maxTexelBufferElements
+// first.
 template <class T>
 GpuBuffer makeTexelBuffer(const VulkanDevice& device, std::span<const T> data, const std::string& what) {
     static_assert(sizeof(T) % 16 == 0, "texel buffers hold whole uvec4 texels");
     VkDeviceSize size = std::max<VkDeviceSize>(data.size_bytes(), 16);
-    GpuBuffer buffer(device, size, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT, what);
+    GpuBuffer buffer(device, size, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT,
+                     what);
     buffer.upload(data);
     buffer.makeTexelView();
     return buffer;

@@ -13,7 +13,7 @@ ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecial
     bindings.fill(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     for (TraceBinding texels : {kBindingParams, kBindingNodes, kBindingVertices, kBindingShading, kBindingMaterials, kBindingLights,
                                 kBindingObjectMaterials})
-        bindings[texels] = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+        bindings[texels] = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
     const auto sceneConstants = specialization.constants();
     std::array<std::uint32_t, sceneConstants.size() + 1> constants;  // then kResumable (constant_id 11)
     std::copy(sceneConstants.begin(), sceneConstants.end(), constants.begin());

@@ -160,6 +160,14 @@ VulkanDevice::VulkanDevice(const std::string& selector) {
                              std::to_string(VK_API_VERSION_MAJOR(properties_.apiVersion)) + "." +
                              std::to_string(VK_API_VERSION_MINOR(properties_.apiVersion)) + "; vitrum needs 1.2");
 
+        // The scene's buffers are read as storage texel buffers of R32G32B32A32_UINT texels
+        // (shaders/bindings.glsl), which Vulkan requires every device to support.
+        VkFormatProperties texelFormat;
+        vkGetPhysicalDeviceFormatProperties(physicalDevice_, VK_FORMAT_R32G32B32A32_UINT, &texelFormat);
+        if (!(texelFormat.bufferFeatures & VK_FORMAT_FEATURE_STORAGE_TEXEL_BUFFER_BIT))
+            throw InputError(std::string("Vulkan device ") + properties_.deviceName +
+                             " cannot read R32G32B32A32_UINT storage texel buffers, which Vulkan requires");
+
         std::uint32_t familyCount = 0;
         vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
         std::vector<VkQueueFamilyProperties> families(familyCount);

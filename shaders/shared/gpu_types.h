@@ -116,7 +116,7 @@ VITRUM_CONST uint kFresnelExact = 1u;
 VITRUM_CONST uint kFresnelSchlickExp2 = 2u;
 
 // ---- Texel buffers -------------------------------------------------------------------------------
-// The scene's read-only data are bound as uniform texel buffers of 16-byte uvec4 texels
+// The scene's read-only data are bound as storage texel buffers of 16-byte uvec4 texels
 // (shaders/bindings.glsl): a struct is this many consecutive texels (gpu_layout.h checks them
 // against the struct sizes). Object media are four uints a texel.
 VITRUM_CONST uint kTraversalNodeTexels = 4u;

@@ -222,7 +222,9 @@ TEST(LoopLimit, TinyBudgetGivesTheImageOfOneDispatch) {
 // tiles are no multiples of 8, so that some subgroups have lanes that return at once: the lanes
 // left share out the counters among themselves (statistics.glsl).
 TEST(Statistics, SubgroupSumsCountWhatPlainAtomicsCount) {
-    if (testDevice().name().find("llvmpipe") != std::string::npos) ASSERT_TRUE(testDevice().hasSubgroupArithmeticAndBallot());
+    if (testDevice().name().find("llvmpipe") != std::string::npos) {
+        ASSERT_TRUE(testDevice().hasSubgroupArithmeticAndBallot());
+    }
     if (!testDevice().hasSubgroupArithmeticAndBallot()) GTEST_SKIP() << "the device has no subgroup arithmetic and ballots";
     Scene scene = loadSized("scenes/demo.json", 37, 29, FresnelModel::Exact);
     const Bvh bvh = buildBvh(scene.triangles);
