@@ -1,4 +1,4 @@
-// The ray/box test and a resumable BVH traversal over the flattened nodes of shared/gpu_types.h.
+// A resumable BVH traversal over the flattened nodes of shared/gpu_types.h.
 // The traversal's state is kept in the global `st` and its stack in gStack (see trace.comp), so
 // that a dispatch can stop after any step and the next one resume it.
 #ifndef VITRUM_BVH_GLSL
@@ -7,24 +7,9 @@
 const uint kNoTriangle = 0xFFFFFFFFu;
 
 #include "lanes.glsl"
+#include "ray_box.glsl"
 #include "triangle_test.glsl"
 #include "touching.glsl"
-
-// Slab test against (tMin, tMax) (Kay and Kajiya), as host/bvh/bvh_traversal.cpp does it: an axis
-// whose slab distance is NaN (0 * inf: the ray runs in the plane of a face) does not constrain
-// the segment, and the exit distance is widened by 1 + 2 gamma(3) so that rounding never culls a
-// triangle lying on a face of the box (pbrt-v4, "Robust Ray-Bounds Intersections").
-bool hitsBox(vec3 boxMin, vec3 boxMax, vec3 origin, vec3 inverseDirection, float tMin, float tMax) {
-    const float kFarScale = 1.00000036;
-    vec3 t0 = (boxMin - origin) * inverseDirection;
-    vec3 t1 = (boxMax - origin) * inverseDirection;
-    bvec3 valid = bvec3(vec3(equal(t0, t0)) * vec3(equal(t1, t1)));
-    vec3 tNear = mix(vec3(-3.0e38), min(t0, t1), valid);
-    vec3 tFar = mix(vec3(3.0e38), max(t0, t1) * kFarScale, valid);
-    float enter = max(max(tNear.x, tNear.y), max(tNear.z, tMin));
-    float leave = min(min(tFar.x, tFar.y), min(tFar.z, tMax));
-    return enter <= leave;
-}
 
 const uint kTraverseClosest = 0u;  // the closest hit (and touching.glsl's candidates, when collected)
 const uint kTraverseAny = 1u;      // any hit (shadow rays)
