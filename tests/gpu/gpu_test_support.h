@@ -11,7 +11,7 @@
 
 #include "bvh/bvh.h"
 #include "cpu/reference_renderer.h"
-#include "gpu/optics_kernel.h"
+#include "gpu/test_kernels.h"
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
 #include "image/image_diff.h"

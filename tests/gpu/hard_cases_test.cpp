@@ -18,7 +18,7 @@
 
 #include "cpu/optics.h"
 #include "cpu/ray_offset.h"
-#include "gpu/optics_kernel.h"
+#include "gpu/test_kernels.h"
 #include "gpu_test_support.h"
 #include "../support/test_meshes.h"
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "cpu/optics.h"
-#include "gpu/optics_kernel.h"
+#include "gpu/test_kernels.h"
 #include "gpu_test_support.h"
 
 namespace vitrum::testing {

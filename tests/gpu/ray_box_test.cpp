@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "gpu/box_kernel.h"
+#include "gpu/test_kernels.h"
 #include "gpu_test_support.h"
 
 namespace vitrum::testing {

@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-#include "gpu/touching_kernel.h"
+#include "gpu/test_kernels.h"
 #include "gpu_test_support.h"
 
 namespace vitrum::testing {

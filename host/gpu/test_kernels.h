@@ -1,0 +1,36 @@
+// Runs GLSL functions of the ray tracer on the device through test kernels (shaders/*_test.comp),
+// one case per invocation, so that tests can check what trace.comp computes directly rather than
+// only through rendered images:
+//   optics_test.comp    shaders/optics.glsl (reflection, refraction, Fresnel, Beer-Lambert)
+//   touching_test.comp  shaders/touching.glsl (touching glass surfaces during a traversal)
+//   box_test.comp       shaders/ray_box.glsl (the traversal's ray/box test)
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "gpu/vulkan_device.h"
+#include "shared/box_test_types.h"
+#include "shared/optics_test_types.h"
+#include "shared/touching_test_types.h"
+
+namespace vitrum {
+
+using OpticsCase = gpu::OpticsCase;
+using OpticsResult = gpu::OpticsResult;
+using TouchingCase = gpu::TouchingCase;
+using TouchingResult = gpu::TouchingResult;
+using BoxCase = gpu::BoxCase;
+using BoxResult = gpu::BoxResult;
+
+// std430 sizes, as the kernels see them.
+static_assert(sizeof(OpticsCase) == 64 && sizeof(OpticsResult) == 64);
+static_assert(sizeof(TouchingCase) == 128 && sizeof(TouchingResult) == 48);
+static_assert(sizeof(BoxCase) == 64 && sizeof(BoxResult) == 16);
+
+// Each evaluates every case on `device` in one dispatch and returns the results in the same order.
+std::vector<OpticsResult> evaluateOpticsOnGpu(VulkanDevice& device, std::span<const OpticsCase> cases);
+std::vector<TouchingResult> evaluateTouchingOnGpu(VulkanDevice& device, std::span<const TouchingCase> cases);
+std::vector<BoxResult> evaluateBoxTestsOnGpu(VulkanDevice& device, std::span<const BoxCase> cases);
+
+}  // namespace vitrum
