@@ -1,6 +1,6 @@
 #version 460
 // Test kernel for shaders/ray_box.glsl: one invocation runs hitsBox for one BoxCase, with the
-// inverse direction computed as bvh.glsl's traverse computes it.
+// ray made as bvh.glsl's traverse makes it.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/gpu_types.h"
@@ -17,6 +17,6 @@ void main() {
     // The last group may run past the end; both buffers hold exactly the cases.
     if (i >= uint(cases.length()) || i >= uint(results.length())) return;
     BoxCase c = cases[i];
-    bool hit = hitsBox(c.boxMin.xyz, c.boxMax.xyz, c.origin.xyz, 1.0 / c.direction.xyz, c.boxMin.w, c.boxMax.w);
+    bool hit = hitsBox(c.boxMin.xyz, c.boxMax.xyz, makeBoxRay(c.origin.xyz, c.direction.xyz), c.boxMin.w, c.boxMax.w);
     results[i].hit = uvec4(hit ? 1u : 0u, 0u, 0u, 0u);
 }

@@ -33,12 +33,11 @@ void beginTraversal(vec3 origin, vec3 direction, float tMin, float tMax) {
 
 // One interior node of a traversal: tests both children's boxes, keeps the nearer hit child in
 // `current` (kNoEntry when neither is hit) and pushes the farther one when both are.
-void visitInteriorNode(inout uint current, inout uint top, vec3 origin, vec3 direction, vec3 inverseDirection,
-                       float tMin, float tMax) {
+void visitInteriorNode(inout uint current, inout uint top, vec3 direction, BoxRay ray, float tMin, float tMax) {
     TraversalNode node = loadTraversalNode(current);
     gNodeVisits += 2u;
-    bool hit0 = hitsBox(node.min0.xyz, node.max0.xyz, origin, inverseDirection, tMin, tMax);
-    bool hit1 = hitsBox(node.min1.xyz, node.max1.xyz, origin, inverseDirection, tMin, tMax);
+    bool hit0 = hitsBox(node.min0.xyz, node.max0.xyz, ray, tMin, tMax);
+    bool hit1 = hitsBox(node.min1.xyz, node.max1.xyz, ray, tMin, tMax);
     // Near child (on the ray's side of the split) and far child.
     bool negative = direction[floatBitsToUint(node.max0.w)] < 0.0;
     bool hitNear = negative ? hit1 : hit0;
@@ -78,7 +77,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
     float tMin = st.traceOrigin.w;
     vec3 direction = st.traceDirection.xyz;
     float tMax = st.traceDirection.w;
-    vec3 inverseDirection = 1.0 / direction;
+    BoxRay boxRay = makeBoxRay(origin, direction);
     uint cursor = st.traversal.x;
     uint leafEnd = st.traversal.y;
     uint closest = st.traversal.z;
@@ -116,7 +115,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
                 current = gStack[top];
             }
             if ((current & kLeafEntryFlag) == 0u)
-                visitInteriorNode(current, top, origin, direction, inverseDirection, tMin, tMax + reach);
+                visitInteriorNode(current, top, direction, boxRay, tMin, tMax + reach);
             // A leaf, popped or just entered, is taken in the same iteration.
             if (current != kNoEntry && (current & kLeafEntryFlag) != 0u) {
                 cursor = (current & ~kLeafEntryFlag) >> 4;

@@ -3,25 +3,40 @@
 #ifndef VITRUM_RAY_BOX_GLSL
 #define VITRUM_RAY_BOX_GLSL
 
-// The larger and the smaller of two numbers that are never NaN, as selects: GLSL's max and min
-// come with NaN fix-ups on lavapipe: 7-9% of a render's time (docs/gpu-design.md).
-float larger(float a, float b) { return a > b ? a : b; }
-float smaller(float a, float b) { return a < b ? a : b; }
+// What the box test needs of a ray, worked out once a traversal.
+struct BoxRay {
+    vec3 origin;
+    vec3 inverseDirection;  // 1 / direction: +-inf where a component is +-0
+    bvec3 negative;         // inverseDirection < 0: a slab's far plane is its lower one
+};
 
-// Slab test against (tMin, tMax) (Kay and Kajiya), as host/bvh/bvh_traversal.cpp does it: an axis
-// whose slab distance is NaN (0 * inf: the ray runs in the plane of a face) does not constrain
-// the segment, and the exit distance is widened by 1 + 2 gamma(3) so that rounding never culls a
-// triangle lying on a face of the box (pbrt-v4, "Robust Ray-Bounds Intersections").
-bool hitsBox(vec3 boxMin, vec3 boxMax, vec3 origin, vec3 inverseDirection, float tMin, float tMax) {
+BoxRay makeBoxRay(vec3 origin, vec3 direction) {
+    vec3 inverseDirection = 1.0 / direction;
+    return BoxRay(origin, inverseDirection, lessThan(inverseDirection, vec3(0.0)));
+}
+
+// max(distance, bound) and min(distance, bound) for a bound that is never NaN, as selects: a NaN
+// distance fails the comparison and gives the bound. (GLSL's max and min come with NaN fix-ups on
+// lavapipe: 7-9% of a render's time, docs/gpu-design.md.)
+float raiseTo(float distance, float bound) { return distance > bound ? distance : bound; }
+float lowerTo(float distance, float bound) { return distance < bound ? distance : bound; }
+
+// Slab test against (tMin, tMax) (Kay and Kajiya), with the result of host/bvh/bvh_traversal.cpp's:
+// an axis whose slab distance is NaN (0 * inf: the ray runs in the plane of a face) does not
+// constrain the segment, and the exit distance is widened by 1 + 2 gamma(3) so that rounding never
+// culls a triangle lying on a face of the box (pbrt-v4, "Robust Ray-Bounds Intersections").
+// Which of a slab's planes is nearer follows from the direction's sign alone: subtracting the
+// origin and multiplying by a positive number keep the planes' order, a negative one reverses
+// it, and an infinite one gives a NaN distance only on a plane through the origin, which then
+// drops out of the bounds it is folded into one at a time.
+bool hitsBox(vec3 boxMin, vec3 boxMax, BoxRay ray, float tMin, float tMax) {
     const float kFarScale = 1.00000036;
-    vec3 t0 = (boxMin - origin) * inverseDirection;
-    vec3 t1 = (boxMax - origin) * inverseDirection;
-    bvec3 valid = bvec3(vec3(equal(t0, t0)) * vec3(equal(t1, t1)));
-    bvec3 t0Nearer = lessThan(t0, t1);  // a NaN axis is replaced below, whichever it picks
-    vec3 tNear = mix(vec3(-3.0e38), mix(t1, t0, t0Nearer), valid);
-    vec3 tFar = mix(vec3(3.0e38), mix(t0, t1, t0Nearer) * kFarScale, valid);
-    float enter = larger(larger(tNear.x, tNear.y), larger(tNear.z, tMin));
-    float leave = smaller(smaller(tFar.x, tFar.y), smaller(tFar.z, tMax));
+    vec3 t0 = (boxMin - ray.origin) * ray.inverseDirection;
+    vec3 t1 = (boxMax - ray.origin) * ray.inverseDirection;
+    vec3 tNear = mix(t0, t1, ray.negative);
+    vec3 tFar = mix(t1, t0, ray.negative) * kFarScale;
+    float enter = raiseTo(tNear.z, raiseTo(tNear.y, raiseTo(tNear.x, tMin)));
+    float leave = lowerTo(tFar.z, lowerTo(tFar.y, lowerTo(tFar.x, tMax)));
     return enter <= leave;
 }
 

@@ -39,6 +39,13 @@ const std::vector<Case> kCases = {
     {"along an edge (two NaN axes)", vec3(0), vec3(1), vec3(1, 1, -1), vec3(0, 0, 1), 0, kFar, true},
     {"parallel to a face, outside the slab", vec3(0), vec3(1), vec3(1.5f, 0.5f, -1), vec3(0, 0, 1), 0, kFar, false},
     {"in a face plane, but past the box", vec3(0), vec3(1), vec3(1, 2, -1), vec3(0, 0, 1), 0, kFar, false},
+    // A NaN axis next to one that misses: the NaN must not hide the miss, whichever its place.
+    {"in the face plane y = 0, before the slab in x", vec3(0), vec3(1), vec3(-0.5f, 0, -1), vec3(0, 0, 1), 0, kFar,
+     false},
+    {"in the face plane y = 1, past the slab in x", vec3(0), vec3(1), vec3(1.5f, 1, -1), vec3(0, 0, 1), 0, kFar, false},
+    {"in the face plane x = 1, past the slab in y", vec3(0), vec3(1), vec3(1, 1.5f, -1), vec3(0, 0, 1), 0, kFar, false},
+    {"in the face plane x = 0, before the slab in y", vec3(0), vec3(1), vec3(0, -0.5f, -1), vec3(0, 0, 1), 0, kFar,
+     false},
     // The box of an axis-aligned triangle has no thickness.
     {"a flat box, in its plane", vec3(0, 0, 0), vec3(1, 1, 0), vec3(-1, 0.5f, 0), vec3(1, 0, 0), 0, kFar, true},
     {"a flat box, head on", vec3(0, 0, 0), vec3(1, 1, 0), vec3(0.5f, 0.5f, -1), vec3(0, 0, 1), 0, kFar, true},
