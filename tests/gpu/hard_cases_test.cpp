@@ -748,6 +748,43 @@ TEST(HardCaseDeepTree, Depth64OverflowsTheGpuRayStackAndSaysSo) {
     }
 }
 
+TEST(HardCaseDeepTree, RayThroughTheDeepestNestOfBoxesNeverOverflowsTheTraversalStack) {
+    // Clusters of tiny triangles along the x axis at scales 4^-k, the camera just beside the
+    // smallest, looking along +x so closely that every ray enters the box of every cluster: at
+    // every interior node both children are entered, the near one holds the smaller scales, so
+    // the far one waits on the stack, one more entry a level, down a path of some 30 levels (a
+    // GPU stack of 24 entries overflows about twice a ray). The rays then pass the triangles edge on
+    // (their plane y = z holds the camera) and meet a backdrop of two colours.
+    Scene scene = emptyScene(33, 33, 0.1f);
+    const float eps = std::ldexp(1.0f, -110);
+    scene.camera.from = vec3(eps);
+    scene.camera.at = vec3(1.0f, eps, eps);
+    scene.background.colour = vec3(0.0f);
+    scene.lights.push_back(PointLight{.position = vec3(5, 0, 0), .colour = vec3(1.0f)});  // lights the ambient terms
+    scene.materials = {material(MaterialModel::Lambert, vec3(0.0f), 1.5f, vec3(0.8f, 0.2f, 0.1f)),
+                       material(MaterialModel::Lambert, vec3(0.0f), 1.5f, vec3(0.1f, 0.3f, 0.9f))};
+    scene.objectNames = {"nest", "backdrop"};
+    for (int k = 0; k < 50; ++k)  // 2^-106 at the smallest: no float of it is subnormal
+        for (int j = 0; j < 3; ++j) {
+            const vec3 c(std::ldexp(1.0f, -2 * k) * (1.0f + 0.01f * float(j)), 0.0f, 0.0f);
+            const float size = std::ldexp(1.0f, -2 * k - 8);
+            scene.triangles.push_back(triangle(c, c + vec3(size, 0, 0), c + vec3(0, size, size), 0, 0));
+        }
+    for (int half = 0; half < 2; ++half) {  // y < 0 and y > 0 at x = 10
+        const float y0 = half == 0 ? -1.0f : 0.0f, y1 = half == 0 ? 0.0f : 1.0f;
+        scene.triangles.push_back(triangle({10, y0, -1}, {10, y1, -1}, {10, y1, 1}, std::uint32_t(half), 1));
+        scene.triangles.push_back(triangle({10, y0, -1}, {10, y1, 1}, {10, y0, 1}, std::uint32_t(half), 1));
+    }
+    const Bvh bvh = buildBvh(scene.triangles);
+    EXPECT_GT(bvh.stats.maxDepth, 28u);  // the case is as deep as intended
+    RenderPair p = renderBoth(scene);
+    std::cout << "    depth " << bvh.stats.maxDepth << ", GPU boxes tested a ray "
+              << double(p.gpuStats.nodeVisits) / double(p.gpuStats.rays.total()) << " (" << p.gpuStats.rays.primary << " primary, " << p.gpuStats.rays.shadow << " shadow rays)\n";
+    EXPECT_EQ(p.gpuStats.limits.traversalStackOverflow, 0u);
+    EXPECT_EQ(p.diff.shareOver005, 0.0);
+    expectImagesMatch(p);
+}
+
 TEST(HardCaseDeepTree, FiveNestedMediaOverflowTheGpuMediumStackAndSaySo) {
     // Five nested glass boxes of different IORs: a ray inside all five needs a medium stack of 5;
     // the GPU's holds 4 (kMaxMediumDepth), so it counts medium_stack_overflow (and, leaving the
