@@ -21,7 +21,7 @@ BoxRay makeBoxRay(vec3 origin, vec3 direction) {
 float raiseTo(float distance, float bound) { return distance > bound ? distance : bound; }
 float lowerTo(float distance, float bound) { return distance < bound ? distance : bound; }
 
-// Slab test against (tMin, tMax) (Kay and Kajiya), with the result of host/bvh/bvh_traversal.cpp's:
+// Slab test against (tMin, tMax) (Kay and Kajiya), with the result of host/bvh/bvh_traversal.cpp's test:
 // an axis whose slab distance is NaN (0 * inf: the ray runs in the plane of a face) does not
 // constrain the segment, and the exit distance is widened by 1 + 2 gamma(3) so that rounding never
 // culls a triangle lying on a face of the box (pbrt-v4, "Robust Ray-Bounds Intersections").
