@@ -22,6 +22,9 @@ layout(constant_id = 10) const bool kSingleSample = false;  // one sample a pixe
 // runs without it and gives up the pixels that need more than one dispatch; the resumable kernel
 // restarts them and suspends them between dispatches.
 layout(constant_id = 11) const bool kResumable = true;
+// Not a scene feature but the device's guarantee: every subgroup is full, since the pipeline was
+// created with VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT (statistics.glsl).
+layout(constant_id = 12) const bool kFullSubgroups = false;
 
 bool usesMaterial(uint model) { return ((kMaterialModels >> model) & 1u) != 0u; }
 

@@ -6,18 +6,27 @@
 // lane is active, and adding 22 counters so took about 10% of a primary-ray render. So the
 // counters are first summed over the subgroup, and then each active lane adds a different one:
 // one atomic does the work of 8 (three for all the sums, one for the maxima).
+//
+// lavapipe's subgroupAdd is a loop over the lanes for each component (23 of them): summing so
+// cost about a tenth of a primary-ray render. Where the pipeline guarantees full subgroups
+// (kFullSubgroups), a butterfly of shuffles does the sums instead, three rounds of adding the lane
+// at distance 1, 2, 4 on lavapipe (docs/gpu-design.md). A shuffle reads another lane, so then
+// every lane of the subgroup must call this, those without a pixel with zeros (trace.comp's main).
 #ifndef VITRUM_STATISTICS_GLSL
 #define VITRUM_STATISTICS_GLSL
 
 #ifndef VITRUM_ATOMIC_STATISTICS
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_shuffle : require
 #endif
 
 // The sums, kStatFirstMax of them, four a vector.
 struct StatisticSums {
     uvec4 v0, v1, v2, v3, v4;
 };
+
+const StatisticSums kNoStatistics = StatisticSums(uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u));
 
 uint statisticAt(StatisticSums s, uint index) {
     uvec4 v = index < 4u ? s.v0 : (index < 8u ? s.v1 : (index < 12u ? s.v2 : (index < 16u ? s.v3 : s.v4)));
@@ -34,6 +43,27 @@ void addStatistics(StatisticSums sums, uvec3 maxima) {
     for (uint i = 0u; i < kStatCount - kStatFirstMax; ++i)
         if (maxima[i] != 0u) atomicMax(stats[kStatFirstMax + i], maxima[i]);
 #else
+    if (kFullSubgroups) {
+        for (uint distance = 1u; distance < gl_SubgroupSize; distance <<= 1u) {
+            sums.v0 += subgroupShuffleXor(sums.v0, distance);
+            sums.v1 += subgroupShuffleXor(sums.v1, distance);
+            sums.v2 += subgroupShuffleXor(sums.v2, distance);
+            sums.v3 += subgroupShuffleXor(sums.v3, distance);
+            sums.v4 += subgroupShuffleXor(sums.v4, distance);
+            maxima = max(maxima, subgroupShuffleXor(maxima, distance));
+        }
+        for (uint first = 0u; first < kStatFirstMax; first += gl_SubgroupSize) {
+            uint index = first + gl_SubgroupInvocationID;
+            uint value = statisticAt(sums, index);
+            if (index < kStatFirstMax && value != 0u) atomicAdd(stats[index], value);
+        }
+        for (uint first = 0u; first < kStatCount - kStatFirstMax; first += gl_SubgroupSize) {
+            uint i = first + gl_SubgroupInvocationID;
+            uint value = i == 0u ? maxima.x : (i == 1u ? maxima.y : maxima.z);
+            if (i < kStatCount - kStatFirstMax && value != 0u) atomicMax(stats[kStatFirstMax + i], value);
+        }
+        return;
+    }
     sums.v0 = subgroupAdd(sums.v0);
     sums.v1 = subgroupAdd(sums.v1);
     sums.v2 = subgroupAdd(sums.v2);

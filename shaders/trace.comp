@@ -479,13 +479,22 @@ void main() {
     params = loadRenderParams();
     uvec2 local = tilePixel();
     uvec2 pixel = params.tile.xy + local;
-    if (local.x >= params.tile.z || local.y >= params.tile.w || pixel.x >= params.image.x || pixel.y >= params.image.y)
-        return;
+    // An invocation has a pixel to trace when it is inside the tile and the image and (in the
+    // resumable kernel) the pixel is not done yet. One without leaves at once, except where the
+    // statistics are summed by shuffles (kFullSubgroups, statistics.glsl), which read every lane:
+    // it then runs no step and counts nothing.
+    bool hasPixel = local.x < params.tile.z && local.y < params.tile.w && pixel.x < params.image.x && pixel.y < params.image.y;
+    if (!hasPixel && !kFullSubgroups) return;
     uint slot = local.y * params.tile.z + local.x;
     pendingBase = slot * kPendingRayCapacity;
     stackBase = slot * kTraversalStackSize;
-    if (!kResumable) startPixel();
-    else if (!resumeState(slot)) return;
+    if (!kResumable) {
+        if (hasPixel) startPixel();
+    } else {
+        hasPixel = hasPixel && resumeState(slot);
+        if (!hasPixel && !kFullSubgroups) return;
+    }
+    if (!hasPixel) st.control.x = kPhaseDone;
 
     // lavapipe runs 8 invocations in lock step and executes both sides of every branch under a
     // mask, so a loop iteration costs its whole body, whatever phase each pixel is in. One
@@ -520,9 +529,11 @@ void main() {
 
     st.traversal.w += gPixelSteps;
     bool done = st.control.x == kPhaseDone;
-    if (done) pixels[pixel.y * params.image.x + pixel.x] = vec4(st.accumulated.xyz / float(params.image.z), 1.0);
-    if (kResumable) suspendState(slot, !done);
-    else markSlot(slot, done);
+    if (hasPixel) {
+        if (done) pixels[pixel.y * params.image.x + pixel.x] = vec4(st.accumulated.xyz / float(params.image.z), 1.0);
+        if (kResumable) suspendState(slot, !done);
+        else markSlot(slot, done);
+    }
 
     // A pixel the first dispatch gives up is traced again from its start: what it counted so far
     // would count twice, so only its steps are counted, as restarted steps. A loop that stopped
@@ -540,5 +551,9 @@ void main() {
         maxima = uvec3(0u);
     }
     if (!done) sums.v1.xy = uvec2(1u, steps < budget ? 1u : 0u);  // kStatUnfinishedPixels, kStatLoopLimitSuspected
+    if (!hasPixel) {
+        sums = kNoStatistics;
+        maxima = uvec3(0u);
+    }
     addStatistics(sums, maxima);
 }

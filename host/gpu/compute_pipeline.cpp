@@ -9,7 +9,7 @@ namespace vitrum {
 
 ComputePipeline::ComputePipeline(const VulkanDevice& device, std::span<const std::uint32_t> spirv,
                                  std::span<const VkDescriptorType> bindingTypes,
-                                 const VkSpecializationInfo* specialization)
+                                 const VkSpecializationInfo* specialization, VkPipelineShaderStageCreateFlags stageFlags)
     : device_(device.device()), bindings_(bindingTypes.begin(), bindingTypes.end()) {
     std::vector<VkDescriptorSetLayoutBinding> bindings;
     for (std::uint32_t b = 0; b < bindings_.size(); ++b)
@@ -51,6 +51,7 @@ ComputePipeline::ComputePipeline(const VulkanDevice& device, std::span<const std
         .stage =
             {
                 .sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                .flags = stageFlags,
                 .stage = VK_SHADER_STAGE_COMPUTE_BIT,
                 .module = module,
                 .pName = "main",

@@ -15,9 +15,10 @@ namespace vitrum {
 class ComputePipeline {
 public:
     // `bindings[i]` is the descriptor type of binding i; `specialization` (may be null) sets the
-    // kernel's specialization constants.
+    // kernel's specialization constants; `stageFlags` are its VkPipelineShaderStageCreateFlags.
     ComputePipeline(const VulkanDevice& device, std::span<const std::uint32_t> spirv,
-                    std::span<const VkDescriptorType> bindings, const VkSpecializationInfo* specialization = nullptr);
+                    std::span<const VkDescriptorType> bindings, const VkSpecializationInfo* specialization = nullptr,
+                    VkPipelineShaderStageCreateFlags stageFlags = 0);
 
     // Points binding i of the descriptor set at buffers[i] (at its texel view for a uniform or
     // storage texel buffer binding).

@@ -7,17 +7,27 @@
 
 namespace vitrum {
 
+StatisticsSums statisticsSumsFor(const VulkanDevice& device, StatisticsSums preferred) {
+    if (preferred == StatisticsSums::shuffles && device.hasFullSubgroups() && kTraceGroupSize % device.maxSubgroupSize() == 0)
+        return StatisticsSums::shuffles;
+    if (preferred != StatisticsSums::atomics && device.hasSubgroupArithmeticAndBallot()) return StatisticsSums::subgroupAdd;
+    return StatisticsSums::atomics;
+}
+
 ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization,
-                                  bool resumable, bool subgroupStatistics) {
+                                  bool resumable, StatisticsSums sums) {
     std::array<VkDescriptorType, kTraceBindingCount> bindings;
     bindings.fill(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     for (TraceBinding texels : {kBindingParams, kBindingNodes, kBindingVertices, kBindingShading, kBindingMaterials, kBindingLights,
                                 kBindingObjectMaterials})
         bindings[texels] = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
     const auto sceneConstants = specialization.constants();
-    std::array<std::uint32_t, sceneConstants.size() + 1> constants;  // then kResumable (constant_id 11)
+    // Then kResumable (constant_id 11) and kFullSubgroups (12).
+    const bool fullSubgroups = sums == StatisticsSums::shuffles;
+    std::array<std::uint32_t, sceneConstants.size() + 2> constants;
     std::copy(sceneConstants.begin(), sceneConstants.end(), constants.begin());
-    constants.back() = resumable ? 1u : 0u;
+    constants[sceneConstants.size()] = resumable ? 1u : 0u;
+    constants[sceneConstants.size() + 1] = fullSubgroups ? 1u : 0u;
     std::array<VkSpecializationMapEntry, constants.size()> entries;
     for (std::uint32_t id = 0; id < entries.size(); ++id)
         entries[id] = {.constantID = id, .offset = id * std::uint32_t(sizeof(std::uint32_t)), .size = sizeof(std::uint32_t)};
@@ -27,10 +37,11 @@ ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecial
         .dataSize = sizeof(constants),
         .pData = constants.data(),
     };
-    const auto code = subgroupStatistics
+    const auto code = sums != StatisticsSums::atomics
                           ? std::span<const std::uint32_t>(trace_spv, std::size(trace_spv))
                           : std::span<const std::uint32_t>(trace_atomic_statistics_spv, std::size(trace_atomic_statistics_spv));
-    return ComputePipeline(device, code, bindings, &info);
+    return ComputePipeline(device, code, bindings, &info,
+                           fullSubgroups ? VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT_EXT : 0);
 }
 
 }  // namespace vitrum

@@ -29,11 +29,21 @@ enum TraceBinding : std::uint32_t {
 
 constexpr std::uint32_t kTraceGroupSize = 8;  // local_size_x = local_size_y in trace.comp
 
+// How trace.comp adds up its counters (shaders/statistics.glsl). All three give the same numbers;
+// each needs more of the device than the one before it, and costs less.
+enum class StatisticsSums {
+    atomics,      // one atomic a counter and invocation (trace_atomic_statistics: no subgroup operations)
+    subgroupAdd,  // summed over each subgroup (subgroup arithmetic and ballots), then each lane adds another counter
+    shuffles,     // the same, summed by a butterfly of shuffles, in full subgroups (VulkanDevice::hasFullSubgroups)
+};
+
+// `preferred`, or the cheapest way before it that `device` can run.
+StatisticsSums statisticsSumsFor(const VulkanDevice& device, StatisticsSums preferred);
+
 // The first dispatch of every tile runs the kernel built with `resumable` false; the pixels it
-// gives up are restarted by the resumable one (shaders/suspend.glsl).
-// `subgroupStatistics`: the build of trace.comp that sums its counters with subgroup arithmetic
-// (VulkanDevice::hasSubgroupArithmeticAndBallot must be true), else the one with plain atomics.
+// gives up are restarted by the resumable one (shaders/suspend.glsl). `sums` must be one that
+// statisticsSumsFor allows.
 ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization,
-                                  bool resumable, bool subgroupStatistics);
+                                  bool resumable, StatisticsSums sums);
 
 }  // namespace vitrum

@@ -106,6 +106,28 @@ std::size_t selectDevice(const std::vector<VkPhysicalDevice>& devices, const std
     throw InputError("--device " + selector + ": no Vulkan device has that in its name (" + known + ")");
 }
 
+// Whether the device can promise that a compute kernel runs in full subgroups
+// (VK_EXT_subgroup_size_control's computeFullSubgroups, core in Vulkan 1.3), and its largest
+// subgroup size.
+bool canRequireFullSubgroups(VkPhysicalDevice device, std::uint32_t& maxSubgroupSize) {
+    std::uint32_t count = 0;
+    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
+    std::vector<VkExtensionProperties> extensions(count);
+    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
+    if (std::none_of(extensions.begin(), extensions.end(), [](const VkExtensionProperties& e) {
+            return std::strcmp(e.extensionName, VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME) == 0;
+        }))
+        return false;
+    VkPhysicalDeviceSubgroupSizeControlFeaturesEXT features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_FEATURES_EXT};
+    VkPhysicalDeviceFeatures2 features2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &features};
+    vkGetPhysicalDeviceFeatures2(device, &features2);
+    VkPhysicalDeviceSubgroupSizeControlPropertiesEXT sizes{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_PROPERTIES_EXT};
+    VkPhysicalDeviceProperties2 properties2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &sizes};
+    vkGetPhysicalDeviceProperties2(device, &properties2);
+    maxSubgroupSize = sizes.maxSubgroupSize;
+    return features.subgroupSizeControl && features.computeFullSubgroups && maxSubgroupSize > 0;
+}
+
 }  // namespace
 
 std::vector<DeviceDescription> VulkanDevice::listDevices() {
@@ -155,6 +177,8 @@ VulkanDevice::VulkanDevice(const std::string& selector) {
         const VkSubgroupFeatureFlags statisticsOperations = VK_SUBGROUP_FEATURE_ARITHMETIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
         subgroupArithmeticAndBallot_ = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
                               (subgroup.supportedOperations & statisticsOperations) == statisticsOperations;
+        fullSubgroups_ = subgroupArithmeticAndBallot_ && (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_SHUFFLE_BIT) &&
+                         canRequireFullSubgroups(physicalDevice_, maxSubgroupSize_);
         if (properties_.apiVersion < VK_API_VERSION_1_2)
             throw InputError(std::string("Vulkan device ") + properties_.deviceName + " supports only Vulkan " +
                              std::to_string(VK_API_VERSION_MAJOR(properties_.apiVersion)) + "." +
@@ -188,10 +212,19 @@ VulkanDevice::VulkanDevice(const std::string& selector) {
             .queueCount = 1,
             .pQueuePriorities = &priority,
         };
+        VkPhysicalDeviceSubgroupSizeControlFeaturesEXT fullSubgroupFeatures{
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_FEATURES_EXT,
+            .subgroupSizeControl = VK_TRUE,
+            .computeFullSubgroups = VK_TRUE,
+        };
+        const char* fullSubgroupExtension = VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME;
         VkDeviceCreateInfo deviceInfo{
             .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+            .pNext = fullSubgroups_ ? &fullSubgroupFeatures : nullptr,
             .queueCreateInfoCount = 1,
             .pQueueCreateInfos = &queueInfo,
+            .enabledExtensionCount = fullSubgroups_ ? 1u : 0u,
+            .ppEnabledExtensionNames = fullSubgroups_ ? &fullSubgroupExtension : nullptr,
         };
         VK_CHECK(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device_));
         vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);

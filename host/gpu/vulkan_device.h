@@ -42,6 +42,13 @@ public:
     // subgroupBallot), as trace.comp's statistics do: not a Vulkan 1.2 requirement, though
     // lavapipe and desktop GPUs have both.
     bool hasSubgroupArithmeticAndBallot() const { return subgroupArithmeticAndBallot_; }
+    // Whether a compute pipeline may require full subgroups
+    // (VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT: VK_EXT_subgroup_size_control's
+    // computeFullSubgroups, enabled on this device) and shuffle within them; implies
+    // hasSubgroupArithmeticAndBallot. Such a kernel's workgroup width must be a multiple of
+    // maxSubgroupSize.
+    bool hasFullSubgroups() const { return fullSubgroups_; }
+    std::uint32_t maxSubgroupSize() const { return maxSubgroupSize_; }
     // Messages the validation layer sent so far (0 when validation is off).
     std::uint32_t validationMessages() const;
 
@@ -62,6 +69,8 @@ private:
 
     VkInstance instance_ = VK_NULL_HANDLE;
     bool subgroupArithmeticAndBallot_ = false;
+    bool fullSubgroups_ = false;
+    std::uint32_t maxSubgroupSize_ = 0;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties properties_{};

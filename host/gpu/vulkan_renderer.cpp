@@ -110,8 +110,8 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     const std::array<const GpuBuffer*, kTraceBindingCount> bound{
         &params, &nodes, &vertices, &shading, &materials, &lights, &textures,
         &texels, &objectMaterials, &pixels, &states, &counters, &pendingRays, &traversalStacks};
-    const bool subgroupStatistics = options.subgroupStatistics && device.hasSubgroupArithmeticAndBallot();
-    ComputePipeline firstPass = makeTracePipeline(device, kernel, false, subgroupStatistics);
+    const StatisticsSums sums = statisticsSumsFor(device, options.statisticsSums);
+    ComputePipeline firstPass = makeTracePipeline(device, kernel, false, sums);
     firstPass.bind(bound);
     stats.addPhase("pipeline", secondsSince(start));
 
@@ -160,7 +160,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
             stats.restartedPixels += givenUp;
             if (givenUp > 0 && !resumable) {
                 const auto buildStart = Clock::now();
-                resumable.emplace(makeTracePipeline(device, kernel, true, subgroupStatistics));
+                resumable.emplace(makeTracePipeline(device, kernel, true, sums));
                 resumable->bind(bound);
                 compile(*resumable);
                 resumableSeconds = secondsSince(buildStart);

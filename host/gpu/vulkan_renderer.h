@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "bvh/bvh.h"
+#include "gpu/trace_pipeline.h"
 #include "gpu/vulkan_device.h"
 #include "image/image.h"
 #include "render/render_stats.h"
@@ -23,11 +24,9 @@ struct VulkanRenderOptions {
     // Build the kernel for what the scene needs (render/trace_specialization.h); false: the
     // general kernel, which decides everything at run time (same image, more code to run).
     bool specialize = true;
-    // Sum the statistics over each subgroup before the atomics that add them up, each lane
-    // adding another counter (shaders/statistics.glsl: 4 atomics a subgroup instead of 22 a
-    // lane), where the device has subgroup arithmetic and ballots; false: one atomic a counter
-    // and invocation. The same numbers either way.
-    bool subgroupStatistics = true;
+    // How the kernel adds up its statistics: this way, or the cheapest one before it that the
+    // device can run (gpu/trace_pipeline.h). The same numbers every way.
+    StatisticsSums statisticsSums = StatisticsSums::shuffles;
     std::function<void(double)> progress;  // fraction done
 };
 

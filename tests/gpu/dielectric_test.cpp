@@ -181,8 +181,8 @@ TEST(LoopLimit, BudgetsCountTheGroupsIterationsSoTheDriverNeverCutsThem) {
     const Bvh bvh = buildBvh(scene.triangles);
     RenderStats group, lane;
     renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = 64000}, group);
-    renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = 64000, .subgroupStatistics = false},
-                 lane);
+    renderVulkan(testDevice(), scene, bvh,
+                 VulkanRenderOptions{.iterationBudget = 64000, .statisticsSums = StatisticsSums::atomics}, lane);
     EXPECT_GT(group.restartedPixels, 0u);  // the budget was reached
     EXPECT_EQ(group.limits.loopLimitSuspected, 0u);
     EXPECT_GT(lane.limits.loopLimitSuspected, 0u);
@@ -216,43 +216,53 @@ TEST(LoopLimit, TinyBudgetGivesTheImageOfOneDispatch) {
     EXPECT_EQ(split.limits.loopLimitSuspected, 0u);
 }
 
-// The statistics summed over subgroups before the atomics (the default where the device has
-// subgroup arithmetic and ballots) are the numbers one atomic per invocation gives, with the
-// budget small enough that pixels are given up, restarted and suspended too. The image and the
-// tiles are no multiples of 8, so that some subgroups have lanes that return at once: the lanes
-// left share out the counters among themselves (statistics.glsl).
+// The statistics summed over subgroups before the atomics (by shuffles in full subgroups, the
+// default where the device can require them, or by subgroupAdd) are the numbers one atomic per
+// invocation gives, with the budget small enough that pixels are given up, restarted and
+// suspended too. The image and the tiles are no multiples of 8, so that some subgroups have
+// lanes without a pixel: with subgroupAdd they return at once and the lanes left share out the
+// counters among themselves; with shuffles they take part with zeros (statistics.glsl).
 TEST(Statistics, SubgroupSumsCountWhatPlainAtomicsCount) {
     if (testDevice().name().find("llvmpipe") != std::string::npos) {
         ASSERT_TRUE(testDevice().hasSubgroupArithmeticAndBallot());
+        ASSERT_TRUE(testDevice().hasFullSubgroups());
+        ASSERT_EQ(statisticsSumsFor(testDevice(), StatisticsSums::shuffles), StatisticsSums::shuffles);
     }
     if (!testDevice().hasSubgroupArithmeticAndBallot()) GTEST_SKIP() << "the device has no subgroup arithmetic and ballots";
     Scene scene = loadSized("scenes/demo.json", 37, 29, FresnelModel::Exact);
     const Bvh bvh = buildBvh(scene.triangles);
-    RenderStats summed, plain;
-    const Image a = renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = 300, .tileSize = 19}, summed);
-    const Image b = renderVulkan(testDevice(), scene, bvh,
-                                 VulkanRenderOptions{.iterationBudget = 300, .tileSize = 19, .subgroupStatistics = false},
-                                 plain);
-    EXPECT_EQ(a.pixels, b.pixels);
-    EXPECT_GT(summed.restartedPixels, 0u);
-    EXPECT_GT(summed.dispatches, 2u);
-    EXPECT_EQ(toJson(summed)["rays"], toJson(plain)["rays"]);
-    EXPECT_EQ(toJson(summed)["limits"], toJson(plain)["limits"]);
-    // The build without subgroup arithmetic counts a lane's loop steps against the budget, not
-    // its group's (trace.comp), so it gives up other pixels: the restarts and dispatches differ,
-    // what is traced does not.
-    for (const char* counter : {"node_visits", "max_ray_depth", "max_medium_depth", "total_internal_reflections",
-                                "touching_probes", "touching_interfaces"})
-        EXPECT_EQ(toJson(summed)[counter], toJson(plain)[counter]) << counter;
-    EXPECT_GT(summed.nodeVisits, 0u);
-    // With a budget that gives up nothing, the steps are those of the pixels alone, the same in both.
-    RenderStats wholeSummed, wholePlain;
-    renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.tileSize = 19}, wholeSummed);
-    renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.tileSize = 19, .subgroupStatistics = false}, wholePlain);
-    EXPECT_EQ(wholeSummed.restartedPixels, 0u);
-    EXPECT_EQ(wholePlain.restartedPixels, 0u);
-    for (const char* counter : {"loop_steps", "max_pixel_loop_steps", "dispatches", "node_visits"})
-        EXPECT_EQ(toJson(wholeSummed)[counter], toJson(wholePlain)[counter]) << counter;
+    auto render = [&](StatisticsSums sums, std::uint32_t budget, Image& image) {
+        RenderStats stats;
+        image = renderVulkan(testDevice(), scene, bvh,
+                             VulkanRenderOptions{.iterationBudget = budget, .tileSize = 19, .statisticsSums = sums}, stats);
+        return stats;
+    };
+    Image plainImage;
+    const RenderStats plain = render(StatisticsSums::atomics, 300, plainImage);
+    for (StatisticsSums way : {StatisticsSums::subgroupAdd, StatisticsSums::shuffles}) {
+        SCOPED_TRACE(way == StatisticsSums::shuffles ? "shuffles" : "subgroupAdd");
+        Image image;
+        const RenderStats summed = render(way, 300, image);
+        EXPECT_EQ(image.pixels, plainImage.pixels);
+        EXPECT_GT(summed.restartedPixels, 0u);
+        EXPECT_GT(summed.dispatches, 2u);
+        EXPECT_EQ(toJson(summed)["rays"], toJson(plain)["rays"]);
+        EXPECT_EQ(toJson(summed)["limits"], toJson(plain)["limits"]);
+        // The build without subgroup arithmetic counts a lane's loop steps against the budget, not
+        // its group's (trace.comp), so it gives up other pixels: the restarts and dispatches differ,
+        // what is traced does not.
+        for (const char* counter : {"node_visits", "max_ray_depth", "max_medium_depth", "total_internal_reflections",
+                                    "touching_probes", "touching_interfaces"})
+            EXPECT_EQ(toJson(summed)[counter], toJson(plain)[counter]) << counter;
+        EXPECT_GT(summed.nodeVisits, 0u);
+        // With a budget that gives up nothing, the steps are those of the pixels alone, the same in both.
+        const RenderStats whole = render(way, 49152, image);
+        const RenderStats wholePlain = render(StatisticsSums::atomics, 49152, image);
+        EXPECT_EQ(whole.restartedPixels, 0u);
+        EXPECT_EQ(wholePlain.restartedPixels, 0u);
+        for (const char* counter : {"loop_steps", "max_pixel_loop_steps", "dispatches", "node_visits"})
+            EXPECT_EQ(toJson(whole)[counter], toJson(wholePlain)[counter]) << counter;
+    }
 }
 
 }  // namespace
