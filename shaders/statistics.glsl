@@ -43,6 +43,9 @@ void addStatistics(StatisticSums sums, uvec3 maxima) {
     for (uint i = 0u; i < kStatCount - kStatFirstMax; ++i)
         if (maxima[i] != 0u) atomicMax(stats[kStatFirstMax + i], maxima[i]);
 #else
+    // Every lane ends up with the subgroup's sums; `lanes` of them, ranked 0 .. lanes - 1, then
+    // add one counter each.
+    uint lanes, rank;
     if (kFullSubgroups) {
         for (uint distance = 1u; distance < gl_SubgroupSize; distance <<= 1u) {
             sums.v0 += subgroupShuffleXor(sums.v0, distance);
@@ -52,27 +55,19 @@ void addStatistics(StatisticSums sums, uvec3 maxima) {
             sums.v4 += subgroupShuffleXor(sums.v4, distance);
             maxima = max(maxima, subgroupShuffleXor(maxima, distance));
         }
-        for (uint first = 0u; first < kStatFirstMax; first += gl_SubgroupSize) {
-            uint index = first + gl_SubgroupInvocationID;
-            uint value = statisticAt(sums, index);
-            if (index < kStatFirstMax && value != 0u) atomicAdd(stats[index], value);
-        }
-        for (uint first = 0u; first < kStatCount - kStatFirstMax; first += gl_SubgroupSize) {
-            uint i = first + gl_SubgroupInvocationID;
-            uint value = i == 0u ? maxima.x : (i == 1u ? maxima.y : maxima.z);
-            if (i < kStatCount - kStatFirstMax && value != 0u) atomicMax(stats[kStatFirstMax + i], value);
-        }
-        return;
+        lanes = gl_SubgroupSize;
+        rank = gl_SubgroupInvocationID;
+    } else {
+        sums.v0 = subgroupAdd(sums.v0);
+        sums.v1 = subgroupAdd(sums.v1);
+        sums.v2 = subgroupAdd(sums.v2);
+        sums.v3 = subgroupAdd(sums.v3);
+        sums.v4 = subgroupAdd(sums.v4);
+        maxima = subgroupMax(maxima);
+        uvec4 activeLanes = subgroupBallot(true);
+        lanes = subgroupBallotBitCount(activeLanes);
+        rank = subgroupBallotExclusiveBitCount(activeLanes);
     }
-    sums.v0 = subgroupAdd(sums.v0);
-    sums.v1 = subgroupAdd(sums.v1);
-    sums.v2 = subgroupAdd(sums.v2);
-    sums.v3 = subgroupAdd(sums.v3);
-    sums.v4 = subgroupAdd(sums.v4);
-    maxima = subgroupMax(maxima);
-    uvec4 activeLanes = subgroupBallot(true);
-    uint lanes = subgroupBallotBitCount(activeLanes);
-    uint rank = subgroupBallotExclusiveBitCount(activeLanes);
     for (uint first = 0u; first < kStatFirstMax; first += lanes) {
         uint index = first + rank;
         uint value = statisticAt(sums, index);
