@@ -78,6 +78,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
     vec3 direction = st.traceDirection.xyz;
     float tMax = st.traceDirection.w;
     BoxRay boxRay = makeBoxRay(origin, direction);
+    TriangleRay triangleRay = makeTriangleRay(origin, direction);
     uint cursor = st.traversal.x;
     uint leafEnd = st.traversal.y;
     uint closest = st.traversal.z;
@@ -132,7 +133,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
             uint triangle = cursor;
             cursor += 1u;
             TriangleVertices tri = loadTriangle(triangle);
-            vec3 hit = intersectTriangle(tri, origin, direction);
+            vec3 hit = intersectTriangle(tri, triangleRay);
             if (hit.x > tMin && hit.x < tMax + reach) {
                 if (collectTouching && floatBitsToUint(tri.v2.w) == kTriangleGlass) {
                     bool entering = dot(direction, cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz)) < 0.0;

@@ -6,9 +6,15 @@
 
 // Woop, Benthin and Wald, "Watertight Ray/Triangle Intersection" (JCGT 2013), without back-face
 // culling; the same arithmetic in the same order as host/bvh/bvh_traversal.cpp, which says why it
-// is watertight. Returns (t, u, v), u and v the barycentrics of v1 and v2, with t = -1 on a miss;
-// both sides of the triangle are hit.
-vec3 intersectTriangle(TriangleVertices tri, vec3 origin, vec3 direction) {
+// is watertight. What depends on the ray alone is worked out once a ray, as the paper does
+// (makeTriangleRay): the same values as working it out for every triangle.
+struct TriangleRay {
+    vec3 origin;
+    ivec3 axes;   // kx, ky, kz: kz the axis where |d| is largest, kx and ky following it
+    vec3 shear;   // sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = 1 / d[kz]
+};
+
+TriangleRay makeTriangleRay(vec3 origin, vec3 direction) {
     vec3 d = direction;
     int kz = 0;
     if (abs(d.y) > abs(d[kz])) kz = 1;
@@ -21,11 +27,17 @@ vec3 intersectTriangle(TriangleVertices tri, vec3 origin, vec3 direction) {
         ky = swapped;
     }
     float sz = 1.0 / d[kz];
-    float sx = d[kx] * sz;
-    float sy = d[ky] * sz;
-    vec3 a = tri.v0.xyz - origin;
-    vec3 b = tri.v1.xyz - origin;
-    vec3 c = tri.v2.xyz - origin;
+    return TriangleRay(origin, ivec3(kx, ky, kz), vec3(d[kx] * sz, d[ky] * sz, sz));
+}
+
+// Returns (t, u, v), u and v the barycentrics of v1 and v2, with t = -1 on a miss; both sides of
+// the triangle are hit.
+vec3 intersectTriangle(TriangleVertices tri, TriangleRay ray) {
+    int kx = ray.axes.x, ky = ray.axes.y, kz = ray.axes.z;
+    float sx = ray.shear.x, sy = ray.shear.y, sz = ray.shear.z;
+    vec3 a = tri.v0.xyz - ray.origin;
+    vec3 b = tri.v1.xyz - ray.origin;
+    vec3 c = tri.v2.xyz - ray.origin;
     float ax = a[kx] - sx * a[kz];
     float ay = a[ky] - sy * a[kz];
     float bx = b[kx] - sx * b[kz];

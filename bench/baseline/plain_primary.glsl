@@ -76,6 +76,7 @@ void main() {
                                (float(pixel.y) + 0.5) * camera.down.xyz);
     vec3 inverse = 1.0 / direction;
     vec3 originTimesInverse = origin * inverse;
+    TriangleRay triangleRay = makeTriangleRay(origin, direction);  // the paper's per-ray setup
     float tHit = 3.0e38;
     int hitTriangle = -1;
 
@@ -123,7 +124,7 @@ void main() {
             }
         }
         for (int i = 0; i < leafCount; ++i) {
-            vec3 h = intersectTriangle(loadTriangle(leafFirst + i), origin, direction);
+            vec3 h = intersectTriangle(loadTriangle(leafFirst + i), triangleRay);
             if (h.x > 0.0 && h.x < tHit) {
                 tHit = h.x;
                 hitTriangle = leafFirst + i;
