@@ -1,16 +1,16 @@
 // What the lanes of a subgroup (lavapipe: the 8 lanes of a SIMD group, run in lock step) know of
-// one another. The build with VITRUM_ATOMIC_STATISTICS is for devices without subgroup arithmetic
+// one another. The build with VITRUM_NO_SUBGROUP_OPERATIONS is for devices without subgroup arithmetic
 // and ballots; there each lane answers for itself.
 #ifndef VITRUM_LANES_GLSL
 #define VITRUM_LANES_GLSL
 
-#ifndef VITRUM_ATOMIC_STATISTICS
+#ifndef VITRUM_NO_SUBGROUP_OPERATIONS
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #endif
 
 // The largest `value` of the active lanes.
 uint groupMax(uint value) {
-#ifdef VITRUM_ATOMIC_STATISTICS
+#ifdef VITRUM_NO_SUBGROUP_OPERATIONS
     return value;
 #else
     return subgroupMax(value);

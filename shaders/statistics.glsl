@@ -15,7 +15,7 @@
 #ifndef VITRUM_STATISTICS_GLSL
 #define VITRUM_STATISTICS_GLSL
 
-#ifndef VITRUM_ATOMIC_STATISTICS
+#ifndef VITRUM_NO_SUBGROUP_OPERATIONS
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_shuffle : require
@@ -34,7 +34,7 @@ uint statisticAt(StatisticSums s, uint index) {
 }
 
 void addStatistics(StatisticSums sums, uvec3 maxima) {
-#ifdef VITRUM_ATOMIC_STATISTICS
+#ifdef VITRUM_NO_SUBGROUP_OPERATIONS
     // No subgroup arithmetic on this device: one atomic a lane and counter.
     for (uint index = 0u; index < kStatFirstMax; ++index) {
         uint value = statisticAt(sums, index);

@@ -9,9 +9,10 @@
 // their state between its dispatches (suspend.glsl), and the host dispatches it until every pixel
 // of the tile is done. Nothing recurses.
 #extension GL_GOOGLE_include_directive : require
-// The default build sums its statistics over each subgroup before adding them up atomically; the
-// build with VITRUM_ATOMIC_STATISTICS (trace_atomic_statistics.spv.h) is for devices without
-// subgroup arithmetic (statistics.glsl).
+// The default build uses subgroup operations: to count the SIMD group's loop iterations
+// (lanes.glsl) and to sum its statistics over each subgroup before adding them up atomically
+// (statistics.glsl). The build with VITRUM_NO_SUBGROUP_OPERATIONS (trace_without_subgroups.spv.h)
+// is for devices without subgroup arithmetic and ballots.
 
 #include "shared/gpu_types.h"
 #include "bindings.glsl"
@@ -74,12 +75,14 @@ uint hitMaterial() { return floatBitsToUint(st.hitNormal.w); }
 uint hitObject() { return floatBitsToUint(st.hitGeometricNormal.w); }
 uint materialModel(GpuMaterial m) { return floatBitsToUint(m.ambient.w); }
 
-// IOR of the medium a ray is in: the innermost object's, or the scene's air.
-float mediumIor(PendingRay r) {
-    if (!usesMaterial(kMaterialGlass)) return params.background.w;
-    uint count = mediaCount(r);
-    return count == 0u ? params.background.w : loadMaterial(objectMaterial(r.media[count - 1u])).attenuation.w;
+// IOR of the medium inside the innermost of `count` objects in `media`, or of the scene's air.
+float ior(uvec4 media, uint count) {
+    if (!usesMaterial(kMaterialGlass) || count == 0u) return params.background.w;
+    return loadMaterial(objectMaterial(media[count - 1u])).attenuation.w;
 }
+
+// IOR of the medium a ray is in.
+float mediumIor(PendingRay r) { return ior(r.media, mediaCount(r)); }
 
 vec3 mediumAttenuation(PendingRay r) {
     if (!kAbsorption) return vec3(0.0);
@@ -335,10 +338,6 @@ void enterMedium(inout uvec4 media, inout uint count, uint object) {
     }
     media[count] = object;
     count += 1u;
-}
-
-float ior(uvec4 media, uint count) {
-    return count == 0u ? params.background.w : loadMaterial(objectMaterial(media[count - 1u])).attenuation.w;
 }
 
 // Glass: the ray enters or leaves object k, decided by the geometric normal of the consistently

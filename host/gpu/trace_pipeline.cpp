@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "trace.spv.h"
-#include "trace_atomic_statistics.spv.h"
+#include "trace_without_subgroups.spv.h"
 
 namespace vitrum {
 
@@ -39,7 +39,7 @@ ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecial
     };
     const auto code = sums != StatisticsSums::atomics
                           ? std::span<const std::uint32_t>(trace_spv, std::size(trace_spv))
-                          : std::span<const std::uint32_t>(trace_atomic_statistics_spv, std::size(trace_atomic_statistics_spv));
+                          : std::span<const std::uint32_t>(trace_without_subgroups_spv, std::size(trace_without_subgroups_spv));
     return ComputePipeline(device, code, bindings, &info,
                            fullSubgroups ? VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT_EXT : 0);
 }

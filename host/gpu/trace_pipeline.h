@@ -32,7 +32,7 @@ constexpr std::uint32_t kTraceGroupSize = 8;  // local_size_x = local_size_y in 
 // How trace.comp adds up its counters (shaders/statistics.glsl). All three give the same numbers;
 // each needs more of the device than the one before it, and costs less.
 enum class StatisticsSums {
-    atomics,      // one atomic a counter and invocation (trace_atomic_statistics: no subgroup operations)
+    atomics,      // one atomic a counter and invocation (trace_without_subgroups: no subgroup operations)
     subgroupAdd,  // summed over each subgroup (subgroup arithmetic and ballots), then each lane adds another counter
     shuffles,     // the same, summed by a butterfly of shuffles, in full subgroups (VulkanDevice::hasFullSubgroups)
 };
