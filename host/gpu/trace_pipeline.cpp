@@ -14,6 +14,12 @@ StatisticsSums statisticsSumsFor(const VulkanDevice& device, StatisticsSums pref
     return StatisticsSums::atomics;
 }
 
+std::span<const std::uint32_t> traceKernelCode(StatisticsSums sums) {
+    return sums != StatisticsSums::atomics
+               ? std::span<const std::uint32_t>(trace_spv, std::size(trace_spv))
+               : std::span<const std::uint32_t>(trace_without_subgroups_spv, std::size(trace_without_subgroups_spv));
+}
+
 ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization,
                                   bool resumable, StatisticsSums sums) {
     std::array<VkDescriptorType, kTraceBindingCount> bindings;
@@ -37,10 +43,7 @@ ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecial
         .dataSize = sizeof(constants),
         .pData = constants.data(),
     };
-    const auto code = sums != StatisticsSums::atomics
-                          ? std::span<const std::uint32_t>(trace_spv, std::size(trace_spv))
-                          : std::span<const std::uint32_t>(trace_without_subgroups_spv, std::size(trace_without_subgroups_spv));
-    return ComputePipeline(device, code, bindings, &info,
+    return ComputePipeline(device, traceKernelCode(sums), bindings, &info,
                            fullSubgroups ? VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT_EXT : 0);
 }
 

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 
 #include "gpu/compute_pipeline.h"
 #include "render/trace_specialization.h"
@@ -39,6 +40,10 @@ enum class StatisticsSums {
 
 // `preferred`, or the cheapest way before it that `device` can run.
 StatisticsSums statisticsSumsFor(const VulkanDevice& device, StatisticsSums preferred);
+
+// The SPIR-V of the trace.comp build that sums its statistics so (one with subgroup operations,
+// one without).
+std::span<const std::uint32_t> traceKernelCode(StatisticsSums sums);
 
 // The first dispatch of every tile runs the kernel built with `resumable` false; the pixels it
 // gives up are restarted by the resumable one (shaders/suspend.glsl). `sums` must be one that
