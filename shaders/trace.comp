@@ -33,6 +33,9 @@ uint gTouchingInterfaces = 0u;
 uint gTouchingProbes = 0u;
 uint gMediumStackOverflows = 0u;
 
+// This invocation's pixel in the image (main's tilePixel() in the tile).
+uvec2 gPixel = uvec2(0u);
+
 // This pixel's pending rays: pendingRays[pendingBase .. pendingBase + kPendingRayCapacity).
 uint pendingBase = 0u;
 // This pixel's BVH traversal stack, in private memory while the kernel runs: on lavapipe that is
@@ -111,7 +114,7 @@ uvec2 tilePixel() {
 }
 
 void startPrimaryRay() {
-    uvec2 pixel = params.tile.xy + tilePixel();
+    uvec2 pixel = gPixel;
     uint pixelIndex = pixel.y * params.image.x + pixel.x;
     uint k = floatBitsToUint(st.accumulated.w);
     vec2 position = vec2(pixel) + sampleOffsetInPixel(pixelIndex, k, params.image.z, params.pass.y);
@@ -478,6 +481,7 @@ void main() {
     params = loadRenderParams();
     uvec2 local = tilePixel();
     uvec2 pixel = params.tile.xy + local;
+    gPixel = pixel;
     // An invocation has a pixel to trace when it is inside the tile and the image and (in the
     // resumable kernel) the pixel is not done yet. One without leaves at once, except where the
     // statistics are summed by shuffles (kFullSubgroups, statistics.glsl), which read every lane:

@@ -38,7 +38,7 @@ enum class StatisticsSums {
     shuffles,     // the same, summed by a butterfly of shuffles, in full subgroups (VulkanDevice::hasFullSubgroups)
 };
 
-// `preferred`, or the cheapest way before it that `device` can run.
+// `preferred` where `device` can run it, else the nearest way before it that it can.
 StatisticsSums statisticsSumsFor(const VulkanDevice& device, StatisticsSums preferred);
 
 // The SPIR-V of the trace.comp build that sums its statistics so (one with subgroup operations,
