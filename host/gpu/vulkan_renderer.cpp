@@ -125,8 +125,6 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     p.tuning.z = stats.features.glassObjects >= 2 ? 1.0f : 0.0f;
     const std::uint32_t tilesX = (width + tileWidth - 1) / tileWidth;
     const std::uint32_t tilesY = (height + tileHeight - 1) / tileHeight;
-    const std::uint32_t groupsX = (tileWidth + kTraceGroupSize - 1) / kTraceGroupSize;
-    const std::uint32_t groupsY = (tileHeight + kTraceGroupSize - 1) / kTraceGroupSize;
     auto* counterValues = counters.as<std::uint32_t>();
 
     // lavapipe compiles a kernel at its first dispatch: one that traces nothing (an empty tile)
@@ -143,9 +141,13 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     // Built when a first dispatch gives up a pixel: most scenes never need it.
     std::optional<ComputePipeline> resumable;
     double resumableSeconds = 0;
+    // A tile at the image's right or bottom edge may be cut off: only the workgroups over its part
+    // inside the image are dispatched.
     auto dispatch = [&](const ComputePipeline& pipeline) {
         std::memcpy(params.mapped(), &p, sizeof(p));
         std::memset(counterValues, 0, gpu::kStatCount * sizeof(std::uint32_t));
+        const std::uint32_t groupsX = (std::min(p.tile.z, width - p.tile.x) + kTraceGroupSize - 1) / kTraceGroupSize;
+        const std::uint32_t groupsY = (std::min(p.tile.w, height - p.tile.y) + kTraceGroupSize - 1) / kTraceGroupSize;
         device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, groupsX, groupsY); });
         ++stats.dispatches;
         addCounters(stats, counterValues);

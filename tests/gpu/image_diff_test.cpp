@@ -73,5 +73,31 @@ TEST(ImageDiff, LambertSpheresMatchReference) {
     expectImagesMatch(renderBoth(loadSmall(sourcePath("scenes/lambert_spheres.json"), 160, 120)));
 }
 
+// Tiles that the image's right and bottom edges cut off (45 x 30 pixels in tiles of 16 and of 20,
+// whose last ones are 13 x 14 and 5 x 10 pixels) are dispatched only over their part inside the
+// image (gpu/vulkan_renderer.cpp), in workgroups of 8 x 8 that the edge cuts too: every pixel is
+// traced, once, as in one tile over the whole image.
+TEST(ImageDiff, TilesCutOffByTheImageEdgeTraceEveryPixelOnce) {
+    const Scene scene = loadSmall(sourcePath("scenes/demo.json"), 45, 30);
+    const Bvh bvh = buildBvh(scene.triangles);
+    auto render = [&](std::uint32_t tileSize, RenderStats& stats) {
+        const std::uint32_t before = testDevice().validationMessages();
+        Image image = renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.tileSize = tileSize}, stats);
+        EXPECT_EQ(testDevice().validationMessages(), before);
+        return image;
+    };
+    RenderStats wholeStats;
+    const Image whole = render(64, wholeStats);
+    EXPECT_EQ(wholeStats.rays.primary, 45u * 30u);
+    for (std::uint32_t tileSize : {16u, 20u}) {
+        SCOPED_TRACE(tileSize);
+        RenderStats stats;
+        const Image tiled = render(tileSize, stats);
+        EXPECT_EQ(stats.rays.primary, 45u * 30u);
+        EXPECT_EQ(stats.rays.total(), wholeStats.rays.total());
+        EXPECT_EQ(tiled.pixels, whole.pixels);
+    }
+}
+
 }  // namespace
 }  // namespace vitrum::testing
