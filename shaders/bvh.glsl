@@ -96,16 +96,19 @@ bool traverse(uint mode, inout uint steps, uint budget) {
     bool over = false;
     // Aila and Laine's "while-while": inner nodes until every lane of the SIMD group holds a leaf
     // (or is done), then that leaf's triangles, so that one loop iteration is one kind of work.
+    // Every loop is written `if (c) do { ... } while (c)`: lavapipe tests a loop's exit at the end
+    // of its body, so a `while (c)` loop runs its whole body once more than its longest lane, with
+    // every lane masked off (docs/gpu-design.md: 12% of a primary-ray render), while the do-while
+    // runs it as often as its longest lane, and once, masked, when no lane enters it.
     // lavapipe counts the group's iterations against its limit, not a lane's: lanes that finish
-    // a loop early wait for the others, and a loop runs one more iteration than its longest lane
-    // (the one in which the last lane leaves). So each inner loop adds the most iterations any
-    // lane ran in it, plus one, to `steps`, which stays the same in all lanes still in the outer
-    // loop. gPixelSteps counts the iterations this lane ran.
-    while (!over && steps < budget) {
+    // a loop early wait for the others. So each inner loop adds the most iterations any lane ran
+    // in it, plus one (for a loop no lane enters), to `steps`, which stays the same in all lanes
+    // still in the outer loop. gPixelSteps counts the iterations this lane ran.
+    if (steps < budget) do {
         steps += 1u;
         gPixelSteps += 1u;
         uint nodeSteps = 0u;
-        while (cursor >= leafEnd && steps + nodeSteps < budget) {
+        if (cursor >= leafEnd && steps < budget) do {
             nodeSteps += 1u;
             if (current == kNoEntry) {
                 if (top == 0u) {
@@ -124,11 +127,11 @@ bool traverse(uint mode, inout uint steps, uint budget) {
                 current = kNoEntry;
                 break;
             }
-        }
+        } while (cursor >= leafEnd && steps + nodeSteps < budget);
         gPixelSteps += nodeSteps;
         steps += groupMax(nodeSteps) + 1u;  // + the iteration that finds every lane done
         uint triangleSteps = 0u;
-        while (cursor < leafEnd && steps + triangleSteps < budget) {
+        if (cursor < leafEnd && steps < budget) do {
             triangleSteps += 1u;
             uint triangle = cursor;
             cursor += 1u;
@@ -150,10 +153,10 @@ bool traverse(uint mode, inout uint steps, uint budget) {
                     }
                 }
             }
-        }
+        } while (cursor < leafEnd && steps + triangleSteps < budget);
         gPixelSteps += triangleSteps;
         steps += groupMax(triangleSteps) + 1u;
-    }
+    } while (!over && steps < budget);
     steps += 1u;  // the outer loop's last test
     // Suspended: the entry in hand goes back on the stack (pushes leave it a free slot).
     if (!over && current != kNoEntry) {

@@ -506,11 +506,13 @@ void main() {
     // other, up to the start of the next traversal: each ray of the tree costs one iteration of
     // shading code, not one per phase. Every loop counts against one budget of steps below
     // lavapipe's 65,535 iterations, which it counts for the SIMD group, not the lane: `steps` is
-    // the group's count, the same in all its lanes at the top of this loop.
+    // the group's count, the same in all its lanes at the top of this loop. The loop is a
+    // do-while, as bvh.glsl's are: a while loop would run its body once more with every lane
+    // masked off.
     uint budget = params.counts.w;
     uint steps = 0u;
     if (st.control.x == kPhaseStartSample) startSample();
-    while (st.control.x != kPhaseDone && steps < budget) {
+    if (st.control.x != kPhaseDone && steps < budget) do {
         steps += 1u;
         gPixelSteps += 1u;
         uint phase = st.control.x;
@@ -528,7 +530,7 @@ void main() {
         if (spawnsRays() && st.control.x == kPhaseScatter) scatter(m);
         if (st.control.x == kPhaseNextRay) nextRay();  // begins a traversal or ends the sample
         if (st.control.x == kPhaseStartSample) startSample();
-    }
+    } while (st.control.x != kPhaseDone && steps < budget);
 
     st.traversal.w += gPixelSteps;
     bool done = st.control.x == kPhaseDone;
