@@ -24,8 +24,8 @@ struct VulkanRenderOptions {
     // Build the kernel for what the scene needs (render/trace_specialization.h); false: the
     // general kernel, which decides everything at run time (same image, more code to run).
     bool specialize = true;
-    // How the kernel adds up its statistics: this way, or the cheapest one before it that the
-    // device can run (gpu/trace_pipeline.h). The same numbers every way.
+    // How the kernel adds up its statistics: this way, or the nearest way before it that the
+    // device can run (gpu/trace_pipeline.h's statisticsSumsFor). The same numbers every way.
     StatisticsSums statisticsSums = StatisticsSums::shuffles;
     std::function<void(double)> progress;  // fraction done
 };
