@@ -32,8 +32,12 @@ void beginTraversal(vec3 origin, vec3 direction, float tMin, float tMax) {
 }
 
 // One interior node of a traversal: tests both children's boxes, keeps the nearer hit child in
-// `current` (kNoEntry when neither is hit) and pushes the farther one when both are.
-void visitInteriorNode(inout uint current, inout uint top, vec3 direction, BoxRay ray, float tMin, float tMax) {
+// `current` and pushes the farther one when both are. When neither is hit, the next entry comes
+// off the stack at once; `over` when the stack is empty. The stack's top is read before the node,
+// so that the two reads overlap and the next node's read waits for neither.
+void visitInteriorNode(inout uint current, inout uint top, inout bool over, vec3 direction, BoxRay ray, float tMin,
+                       float tMax) {
+    uint below = gStack[top == 0u ? 0u : top - 1u];
     TraversalNode node = loadTraversalNode(current);
     gNodeVisits += 2u;
     bool hit0 = hitsBox(node.min0.xyz, node.max0.xyz, ray, tMin, tMax);
@@ -44,8 +48,12 @@ void visitInteriorNode(inout uint current, inout uint top, vec3 direction, BoxRa
     bool hitFar = negative ? hit0 : hit1;
     uint entry0 = floatBitsToUint(node.min0.w);
     uint entry1 = floatBitsToUint(node.min1.w);
-    current = hitNear ? (negative ? entry1 : entry0) : kNoEntry;
-    if (!hitFar) return;
+    current = hitNear ? (negative ? entry1 : entry0) : below;
+    if (!hitFar) {
+        if (!hitNear && top == 0u) over = true;
+        else if (!hitNear) top -= 1u;
+        return;
+    }
     uint farEntry = negative ? entry0 : entry1;
     if (!hitNear) {
         current = farEntry;
@@ -107,21 +115,22 @@ bool traverse(uint mode, inout uint steps, uint budget) {
     if (steps < budget) do {
         steps += 1u;
         gPixelSteps += 1u;
-        uint nodeSteps = 0u;
-        if (cursor >= leafEnd && steps < budget) do {
-            nodeSteps += 1u;
-            if (current == kNoEntry) {
-                if (top == 0u) {
-                    over = true;
-                    break;
-                }
+        // After a leaf (or on resuming between nodes), the next entry comes off the stack.
+        if (current == kNoEntry && cursor >= leafEnd) {
+            if (top == 0u) over = true;
+            else {
                 top -= 1u;
                 current = gStack[top];
             }
+        }
+        uint nodeSteps = 0u;
+        if (!over && cursor >= leafEnd && steps < budget) do {
+            nodeSteps += 1u;
             if ((current & kLeafEntryFlag) == 0u)
-                visitInteriorNode(current, top, direction, boxRay, tMin, tMax + reach);
-            // A leaf, popped or just entered, is taken in the same iteration.
-            if (current != kNoEntry && (current & kLeafEntryFlag) != 0u) {
+                visitInteriorNode(current, top, over, direction, boxRay, tMin, tMax + reach);
+            if (over) break;
+            // A leaf, taken off the stack or just entered, is taken in the same iteration.
+            if ((current & kLeafEntryFlag) != 0u) {
                 cursor = (current & ~kLeafEntryFlag) >> 4;
                 leafEnd = cursor + (current & 15u);
                 current = kNoEntry;
