@@ -9,6 +9,7 @@
 #include "app/commands.h"
 #include "bvh/bvh.h"
 #include "common/error.h"
+#include "gpu/trace_pipeline.h"
 #include "gpu/vulkan_device.h"
 #include "image/image_diff.h"
 #include "render/scene_features.h"
@@ -122,13 +123,23 @@ int diffCommand(int argc, char** argv, int first) {
 
 int devicesCommand(int argc, char** argv, int first) {
     if (wantsHelp(argc, argv, first)) {
-        std::cout << "usage: vitrum devices\n\nLists the Vulkan devices; 'vitrum render --device' takes an index or "
-                     "part of a name.\n";
+        std::cout << "usage: vitrum devices\n\nLists the Vulkan devices, each with what decides how vitrum's kernel runs there: its\n"
+                     "subgroups (which count the loop budget and sum the statistics) and its buffer limits.\n"
+                     "'vitrum render --device' takes an index or part of a name.\n";
         return 0;
     }
-    for (const DeviceDescription& d : VulkanDevice::listDevices())
+    for (const DeviceDescription& d : VulkanDevice::listDevices()) {
         std::printf("%u: %s (%s, Vulkan %u.%u)\n", d.index, d.name.c_str(), d.type.c_str(),
                     VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion));
+        // What decides how trace.comp runs there (docs/gpu-design.md): the subgroups, which
+        // count the loop budget and sum the statistics, and the buffer limits the scene must fit.
+        const SubgroupSupport& s = d.subgroups;
+        std::printf("   subgroups of %u lanes, arithmetic and ballots: %s, full subgroups: %s; statistics summed by %s\n",
+                    s.size, s.arithmeticAndBallot ? "yes" : "no", s.fullSubgroups ? "yes" : "no",
+                    statisticsSumsName(statisticsSumsFor(s, StatisticsSums::shuffles)));
+        std::printf("   storage buffers up to %llu MiB, texel buffers up to %u texels\n",
+                    static_cast<unsigned long long>(d.maxStorageBufferRange >> 20), d.maxTexelBufferElements);
+    }
     return 0;
 }
 

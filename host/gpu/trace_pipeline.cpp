@@ -7,11 +7,24 @@
 
 namespace vitrum {
 
-StatisticsSums statisticsSumsFor(const VulkanDevice& device, StatisticsSums preferred) {
-    if (preferred == StatisticsSums::shuffles && device.hasFullSubgroups() && kTraceGroupSize % device.maxSubgroupSize() == 0)
+StatisticsSums statisticsSumsFor(const SubgroupSupport& device, StatisticsSums preferred) {
+    if (preferred == StatisticsSums::shuffles && device.fullSubgroups && kTraceGroupSize % device.maxSize == 0)
         return StatisticsSums::shuffles;
-    if (preferred != StatisticsSums::atomics && device.hasSubgroupArithmeticAndBallot()) return StatisticsSums::subgroupAdd;
+    if (preferred != StatisticsSums::atomics && device.arithmeticAndBallot) return StatisticsSums::subgroupAdd;
     return StatisticsSums::atomics;
+}
+
+StatisticsSums statisticsSumsFor(const VulkanDevice& device, StatisticsSums preferred) {
+    return statisticsSumsFor(device.subgroups(), preferred);
+}
+
+const char* statisticsSumsName(StatisticsSums sums) {
+    switch (sums) {
+        case StatisticsSums::atomics: return "atomics";
+        case StatisticsSums::subgroupAdd: return "subgroupAdd";
+        case StatisticsSums::shuffles: return "shuffles";
+    }
+    return "?";
 }
 
 std::span<const std::uint32_t> traceKernelCode(StatisticsSums sums) {

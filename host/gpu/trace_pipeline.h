@@ -35,11 +35,15 @@ constexpr std::uint32_t kTraceGroupSize = 8;  // local_size_x = local_size_y in 
 enum class StatisticsSums {
     atomics,      // one atomic a counter and invocation (trace_without_subgroups: no subgroup operations)
     subgroupAdd,  // summed over each subgroup (subgroup arithmetic and ballots), then each lane adds another counter
-    shuffles,     // the same, summed by a butterfly of shuffles, in full subgroups (VulkanDevice::hasFullSubgroups)
+    shuffles,     // the same, summed by a butterfly of shuffles, in full subgroups (SubgroupSupport::fullSubgroups)
 };
 
 // `preferred` where `device` can run it, else the nearest way before it that it can.
+StatisticsSums statisticsSumsFor(const SubgroupSupport& device, StatisticsSums preferred);
 StatisticsSums statisticsSumsFor(const VulkanDevice& device, StatisticsSums preferred);
+
+// "atomics", "subgroupAdd", "shuffles".
+const char* statisticsSumsName(StatisticsSums sums);
 
 // The SPIR-V of the trace.comp build that sums its statistics so (one with subgroup operations,
 // one without).

@@ -128,6 +128,20 @@ bool canRequireFullSubgroups(VkPhysicalDevice device, std::uint32_t& maxSubgroup
     return features.subgroupSizeControl && features.computeFullSubgroups && maxSubgroupSize > 0;
 }
 
+SubgroupSupport subgroupSupportOf(VkPhysicalDevice device) {
+    VkPhysicalDeviceSubgroupProperties subgroup{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &subgroup};
+    vkGetPhysicalDeviceProperties2(device, &properties2);
+    SubgroupSupport support;
+    support.size = subgroup.subgroupSize;
+    const VkSubgroupFeatureFlags statisticsOperations = VK_SUBGROUP_FEATURE_ARITHMETIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
+    support.arithmeticAndBallot = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+                                  (subgroup.supportedOperations & statisticsOperations) == statisticsOperations;
+    support.fullSubgroups = support.arithmeticAndBallot && (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_SHUFFLE_BIT) &&
+                            canRequireFullSubgroups(device, support.maxSize);
+    return support;
+}
+
 }  // namespace
 
 std::vector<DeviceDescription> VulkanDevice::listDevices() {
@@ -138,7 +152,8 @@ std::vector<DeviceDescription> VulkanDevice::listDevices() {
         for (std::uint32_t i = 0; i < devices.size(); ++i) {
             VkPhysicalDeviceProperties p;
             vkGetPhysicalDeviceProperties(devices[i], &p);
-            result.push_back({i, p.deviceName, deviceTypeName(p.deviceType), p.apiVersion});
+            result.push_back({i, p.deviceName, deviceTypeName(p.deviceType), p.apiVersion, subgroupSupportOf(devices[i]),
+                              p.limits.maxStorageBufferRange, p.limits.maxTexelBufferElements});
         }
     } catch (...) {
         vkDestroyInstance(instance, nullptr);
@@ -171,14 +186,7 @@ VulkanDevice::VulkanDevice(const std::string& selector) {
         physicalDevice_ = devices[selectDevice(devices, selector)];
         vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
         vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
-        VkPhysicalDeviceSubgroupProperties subgroup{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
-        VkPhysicalDeviceProperties2 properties2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &subgroup};
-        vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
-        const VkSubgroupFeatureFlags statisticsOperations = VK_SUBGROUP_FEATURE_ARITHMETIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
-        subgroupArithmeticAndBallot_ = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
-                              (subgroup.supportedOperations & statisticsOperations) == statisticsOperations;
-        fullSubgroups_ = subgroupArithmeticAndBallot_ && (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_SHUFFLE_BIT) &&
-                         canRequireFullSubgroups(physicalDevice_, maxSubgroupSize_);
+        subgroups_ = subgroupSupportOf(physicalDevice_);
         if (properties_.apiVersion < VK_API_VERSION_1_2)
             throw InputError(std::string("Vulkan device ") + properties_.deviceName + " supports only Vulkan " +
                              std::to_string(VK_API_VERSION_MAJOR(properties_.apiVersion)) + "." +
@@ -220,11 +228,11 @@ VulkanDevice::VulkanDevice(const std::string& selector) {
         const char* fullSubgroupExtension = VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME;
         VkDeviceCreateInfo deviceInfo{
             .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
-            .pNext = fullSubgroups_ ? &fullSubgroupFeatures : nullptr,
+            .pNext = subgroups_.fullSubgroups ? &fullSubgroupFeatures : nullptr,
             .queueCreateInfoCount = 1,
             .pQueueCreateInfos = &queueInfo,
-            .enabledExtensionCount = fullSubgroups_ ? 1u : 0u,
-            .ppEnabledExtensionNames = fullSubgroups_ ? &fullSubgroupExtension : nullptr,
+            .enabledExtensionCount = subgroups_.fullSubgroups ? 1u : 0u,
+            .ppEnabledExtensionNames = subgroups_.fullSubgroups ? &fullSubgroupExtension : nullptr,
         };
         VK_CHECK(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device_));
         vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);

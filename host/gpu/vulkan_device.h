@@ -13,11 +13,28 @@
 
 namespace vitrum {
 
+// What a device's subgroups can do for trace.comp (shaders/lanes.glsl, shaders/statistics.glsl).
+struct SubgroupSupport {
+    std::uint32_t size = 0;  // VkPhysicalDeviceSubgroupProperties::subgroupSize (lavapipe: 8)
+    // Compute shaders may use subgroup arithmetic and ballots (subgroupAdd, subgroupBallot), as
+    // trace.comp's statistics do: not a Vulkan 1.2 requirement, though lavapipe and desktop GPUs
+    // have both.
+    bool arithmeticAndBallot = false;
+    // A compute pipeline may require full subgroups (VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT:
+    // VK_EXT_subgroup_size_control's computeFullSubgroups) and shuffle within them; implies
+    // arithmeticAndBallot. Such a kernel's workgroup width must be a multiple of maxSize.
+    bool fullSubgroups = false;
+    std::uint32_t maxSize = 0;  // the largest subgroup size a pipeline may get; 0 without size control
+};
+
 struct DeviceDescription {
     std::uint32_t index = 0;
     std::string name;
     std::string type;  // "discrete GPU", "integrated GPU", "CPU", ...
     std::uint32_t apiVersion = 0;
+    SubgroupSupport subgroups;
+    std::uint64_t maxStorageBufferRange = 0;  // bytes a storage buffer binding may span
+    std::uint32_t maxTexelBufferElements = 0;
 };
 
 class VulkanDevice {
@@ -38,17 +55,12 @@ public:
     std::uint32_t queueFamily() const { return queueFamily_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     std::string name() const { return properties_.deviceName; }
-    // Whether compute shaders may use subgroup arithmetic and ballots (subgroupAdd,
-    // subgroupBallot), as trace.comp's statistics do: not a Vulkan 1.2 requirement, though
-    // lavapipe and desktop GPUs have both.
-    bool hasSubgroupArithmeticAndBallot() const { return subgroupArithmeticAndBallot_; }
-    // Whether a compute pipeline may require full subgroups
-    // (VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT: VK_EXT_subgroup_size_control's
-    // computeFullSubgroups, enabled on this device) and shuffle within them; implies
-    // hasSubgroupArithmeticAndBallot. Such a kernel's workgroup width must be a multiple of
-    // maxSubgroupSize.
-    bool hasFullSubgroups() const { return fullSubgroups_; }
-    std::uint32_t maxSubgroupSize() const { return maxSubgroupSize_; }
+    // SubgroupSupport says what these mean; full subgroups are enabled on this device where it
+    // has them.
+    const SubgroupSupport& subgroups() const { return subgroups_; }
+    bool hasSubgroupArithmeticAndBallot() const { return subgroups_.arithmeticAndBallot; }
+    bool hasFullSubgroups() const { return subgroups_.fullSubgroups; }
+    std::uint32_t maxSubgroupSize() const { return subgroups_.maxSize; }
     // Messages the validation layer sent so far (0 when validation is off).
     std::uint32_t validationMessages() const;
 
@@ -68,9 +80,7 @@ private:
     void endSubmitWait(VkCommandBuffer commands);
 
     VkInstance instance_ = VK_NULL_HANDLE;
-    bool subgroupArithmeticAndBallot_ = false;
-    bool fullSubgroups_ = false;
-    std::uint32_t maxSubgroupSize_ = 0;
+    SubgroupSupport subgroups_;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties properties_{};

@@ -106,6 +106,25 @@ TEST_F(Cli, HelpIsThereForEveryCommand) {
     }
 }
 
+// Each device with its subgroups and limits. lavapipe on a 256-bit CPU runs 8 lanes a SIMD group
+// and has full subgroups (the platform facts of DEVELOPERS.md), so trace.comp sums its statistics
+// by shuffles there.
+TEST_F(Cli, DevicesListsSubgroupsAndLimits) {
+    CommandRun r = vitrum("devices");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.rfind("0: ", 0), 0u) << r.output;
+    EXPECT_NE(r.output.find("subgroups of "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("statistics summed by "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("storage buffers up to "), std::string::npos) << r.output;
+    if (r.output.find("llvmpipe (LLVM 15.0.6, 256 bits)") != std::string::npos) {
+        EXPECT_NE(r.output.find("subgroups of 8 lanes, arithmetic and ballots: yes, full subgroups: yes; "
+                                "statistics summed by shuffles"),
+                  std::string::npos)
+            << r.output;
+        EXPECT_NE(r.output.find("storage buffers up to 128 MiB"), std::string::npos) << r.output;
+    }
+}
+
 TEST_F(Cli, InfoReportsTrianglesAndBvh) {
     CommandRun r = vitrum("info " + kGeosphere);
     EXPECT_EQ(r.exitCode, 0) << r.output;
