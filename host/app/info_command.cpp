@@ -131,6 +131,10 @@ int devicesCommand(int argc, char** argv, int first) {
     for (const DeviceDescription& d : VulkanDevice::listDevices()) {
         std::printf("%u: %s (%s, Vulkan %u.%u)\n", d.index, d.name.c_str(), d.type.c_str(),
                     VK_API_VERSION_MAJOR(d.apiVersion), VK_API_VERSION_MINOR(d.apiVersion));
+        if (d.apiVersion < VK_API_VERSION_1_2) {
+            std::printf("   not usable: vitrum needs Vulkan 1.2\n");
+            continue;
+        }
         // What decides how trace.comp runs there (docs/gpu-design.md): the subgroups, which
         // count the loop budget and sum the statistics, and the buffer limits the scene must fit.
         const SubgroupSupport& s = d.subgroups;

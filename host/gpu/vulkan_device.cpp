@@ -152,7 +152,9 @@ std::vector<DeviceDescription> VulkanDevice::listDevices() {
         for (std::uint32_t i = 0; i < devices.size(); ++i) {
             VkPhysicalDeviceProperties p;
             vkGetPhysicalDeviceProperties(devices[i], &p);
-            result.push_back({i, p.deviceName, deviceTypeName(p.deviceType), p.apiVersion, subgroupSupportOf(devices[i]),
+            // Subgroup properties are Vulkan 1.1; vitrum refuses devices below 1.2 anyway.
+            const SubgroupSupport subgroups = p.apiVersion >= VK_API_VERSION_1_1 ? subgroupSupportOf(devices[i]) : SubgroupSupport{};
+            result.push_back({i, p.deviceName, deviceTypeName(p.deviceType), p.apiVersion, subgroups,
                               p.limits.maxStorageBufferRange, p.limits.maxTexelBufferElements});
         }
     } catch (...) {
