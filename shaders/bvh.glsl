@@ -138,7 +138,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
             }
         } while (cursor >= leafEnd && steps + nodeSteps < budget);
         gPixelSteps += nodeSteps;
-        steps += groupMax(nodeSteps) + 1u;  // + the iteration that finds every lane done
+        steps += groupMax(nodeSteps) + 1u;  // + one for a loop no lane enters (its body runs once, masked)
         uint triangleSteps = 0u;
         if (cursor < leafEnd && steps < budget) do {
             triangleSteps += 1u;
@@ -166,7 +166,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
         gPixelSteps += triangleSteps;
         steps += groupMax(triangleSteps) + 1u;
     } while (!over && steps < budget);
-    steps += 1u;  // the outer loop's last test
+    steps += 1u;  // margin: the outer loop is a do-while and runs no extra test iteration
     // Suspended: the entry in hand goes back on the stack (pushes leave it a free slot).
     if (!over && current != kNoEntry) {
         gStack[top] = current;
