@@ -17,4 +17,13 @@ uint groupMax(uint value) {
 #endif
 }
 
+// Whether this is the one active lane that speaks for its subgroup.
+bool firstLane() {
+#ifdef VITRUM_NO_SUBGROUP_OPERATIONS
+    return true;
+#else
+    return subgroupElect();
+#endif
+}
+
 #endif

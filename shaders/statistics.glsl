@@ -1,5 +1,5 @@
 // Adds one invocation's counters to stats[] (gpu_types.h's kStat* indices). `sums` holds the
-// counters 0 .. kStatFirstMax - 1 in index order (the last vector's w is unused);
+// counters 0 .. kStatFirstMax - 1 in index order;
 // `maxima` the counters from kStatFirstMax on.
 //
 // On lavapipe every atomic is a loop over the 8 lanes of a SIMD group, run in full even when no

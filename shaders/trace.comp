@@ -473,8 +473,8 @@ const bool kStatOrderAsFilled =
     kStatDepthLimitHits == 7u && kStatNodeVisits == 8u && kStatTraversalSteps == 9u && kStatRayStackOverflow == 10u &&
     kStatMediumStackOverflow == 11u && kStatWeightCuts == 12u && kStatTotalInternalReflections == 13u &&
     kStatAbsorbedEscapes == 14u && kStatTouchingInterfaces == 15u && kStatInconsistentMedia == 16u &&
-    kStatTouchingProbes == 17u && kStatRestartedSteps == 18u && kStatFirstMax == 19u && kStatMaxPixelSteps == 19u &&
-    kStatMaxRayDepth == 20u && kStatMaxMediumDepth == 21u && kStatCount == 22u;
+    kStatTouchingProbes == 17u && kStatRestartedSteps == 18u && kStatGroupSteps == 19u && kStatFirstMax == 20u &&
+    kStatMaxPixelSteps == 20u && kStatMaxRayDepth == 21u && kStatMaxMediumDepth == 22u && kStatCount == 23u;
 const uint kStatOrderCheck[kStatOrderAsFilled ? 1 : -1] = uint[](0u);
 
 void main() {
@@ -560,5 +560,10 @@ void main() {
         sums = kNoStatistics;
         maxima = uvec3(0u);
     }
+    // The group's steps, once a group (kStatGroupSteps): a lane that finished early stopped
+    // counting, so the group's count is its lanes' largest. Against the lanes' own steps it says
+    // how full the SIMD groups were (docs/gpu-design.md).
+    uint groupSteps = groupMax(steps);
+    sums.v4.w = firstLane() ? groupSteps : 0u;
     addStatistics(sums, maxima);
 }

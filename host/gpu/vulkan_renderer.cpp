@@ -47,6 +47,7 @@ void addCounters(RenderStats& stats, const std::uint32_t* counters) {
     stats.maxPixelLoopSteps = std::max<std::uint64_t>(stats.maxPixelLoopSteps, counters[gpu::kStatMaxPixelSteps]);
     stats.touchingProbes += counters[gpu::kStatTouchingProbes];
     stats.restartedSteps += counters[gpu::kStatRestartedSteps];
+    stats.groupLoopSteps += counters[gpu::kStatGroupSteps];
 }
 
 // kObjectMaterialsPerTexel uints a texel, zero-padded: the layout bindings.glsl's objectMaterial() reads.
@@ -111,6 +112,8 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
         &params, &nodes, &vertices, &shading, &materials, &lights, &textures,
         &texels, &objectMaterials, &pixels, &states, &counters, &pendingRays, &traversalStacks};
     const StatisticsSums sums = statisticsSumsFor(device, options.statisticsSums);
+    // The build without subgroup operations counts each lane's steps as a group's.
+    stats.lanesPerGroup = sums == StatisticsSums::atomics ? 1u : device.subgroups().size;
     ComputePipeline firstPass = makeTracePipeline(device, kernel, false, sums);
     firstPass.bind(bound);
     stats.addPhase("pipeline", secondsSince(start));

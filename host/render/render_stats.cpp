@@ -39,6 +39,8 @@ nlohmann::json toJson(const RenderStats& stats) {
         {"absorbed_escapes", stats.absorbedEscapes},
         {"loop_steps", stats.loopSteps},
         {"max_pixel_loop_steps", stats.maxPixelLoopSteps},
+        {"group_loop_steps", stats.groupLoopSteps},
+        {"lanes_per_group", stats.lanesPerGroup},
         {"dispatches", stats.dispatches},
         {"restarted_pixels", stats.restartedPixels},
         {"restarted_steps", stats.restartedSteps},

@@ -51,6 +51,11 @@ struct RenderStats {
     std::uint64_t maxMediumDepth = 0;      // most media one ray was inside
     std::uint64_t loopSteps = 0;          // GPU: steps of trace.comp's loop, all pixels
     std::uint64_t maxPixelLoopSteps = 0;  // GPU: most steps one pixel needed, over all its dispatches
+    // GPU: the steps the SIMD groups ran (each group once, as the budget counts them), first
+    // attempts included: lanes that wait for the others of their group make it larger than
+    // (loopSteps + restartedSteps) / lanes a group.
+    std::uint64_t groupLoopSteps = 0;
+    std::uint32_t lanesPerGroup = 0;  // GPU: lanes the kernel counts a group's steps for (1: each lane its own)
     SceneFeatures features;                    // what the scene can need (both backends use it)
     std::optional<TraceSpecialization> kernel;  // GPU: what the kernel was built for
     std::uint64_t stateBytesPerPixel = 0;      // GPU: trace state and pending rays of one pixel

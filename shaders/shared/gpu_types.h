@@ -223,12 +223,14 @@ VITRUM_CONST uint kStatTouchingInterfaces = 15u; // glass hits where other objec
 VITRUM_CONST uint kStatInconsistentMedia = 16u;  // a ray left an object it was not inside
 VITRUM_CONST uint kStatTouchingProbes = 17u;     // glass hits whose touching surfaces were looked for
 VITRUM_CONST uint kStatRestartedSteps = 18u;     // steps of first attempts given up (see kResumable)
+VITRUM_CONST uint kStatGroupSteps = 19u;         // steps the SIMD groups ran, as the budget counts
+                                                 // them: each group once, first attempts included
 // The counters from kStatFirstMax on are maxima (atomicMax), the others sums.
-VITRUM_CONST uint kStatFirstMax = 19u;
-VITRUM_CONST uint kStatMaxPixelSteps = 19u;      // most loop steps one pixel needed
-VITRUM_CONST uint kStatMaxRayDepth = 20u;        // deepest ray traced
-VITRUM_CONST uint kStatMaxMediumDepth = 21u;     // most media one ray was inside
-VITRUM_CONST uint kStatCount = 22u;
+VITRUM_CONST uint kStatFirstMax = 20u;
+VITRUM_CONST uint kStatMaxPixelSteps = 20u;      // most loop steps one pixel needed
+VITRUM_CONST uint kStatMaxRayDepth = 21u;        // deepest ray traced
+VITRUM_CONST uint kStatMaxMediumDepth = 22u;     // most media one ray was inside
+VITRUM_CONST uint kStatCount = 23u;
 
 // ---- Sampling -------------------------------------------------------------------------------
 // The integer hash both backends use for jitter, so that their samples are bit-identical:

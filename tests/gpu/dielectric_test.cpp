@@ -216,6 +216,29 @@ TEST(LoopLimit, TinyBudgetGivesTheImageOfOneDispatch) {
     EXPECT_EQ(split.limits.loopLimitSuspected, 0u);
 }
 
+// The kernel's count of its SIMD groups' steps (group_loop_steps) against the budget, which it is
+// the count of: a dispatch that leaves a pixel unfinished ran its group to the budget, and no
+// group runs past it by more than three steps (the traversal's node and triangle loops stop at
+// the budget, then each adds its one masked pass and the traversal its margin of one,
+// shaders/bvh.glsl). A 4x2 image is one SIMD group on lavapipe, and on any device with subgroups
+// of 8 or more lanes. And a group runs every step any of its lanes runs: the lanes' own steps are
+// at most the group's, times its lanes.
+TEST(LoopLimit, AGroupRunsToItsBudgetAndNoFurther) {
+    if (!testDevice().hasSubgroupArithmeticAndBallot()) GTEST_SKIP() << "the device has no subgroup arithmetic";
+    if (testDevice().subgroups().size < 8) GTEST_SKIP() << "a 4x2 image is more than one subgroup";
+    Scene scene = loadSized("scenes/demo.json", 4, 2, FresnelModel::Exact);
+    const Bvh bvh = buildBvh(scene.triangles);
+    constexpr std::uint32_t kBudget = 25;
+    RenderStats stats;
+    renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = kBudget}, stats);
+    ASSERT_GT(stats.dispatches, 3u) << "the pixels no longer need several dispatches at this budget";
+    EXPECT_GE(stats.groupLoopSteps, (stats.dispatches - 1) * kBudget);
+    EXPECT_LE(stats.groupLoopSteps, stats.dispatches * (kBudget + 3));
+    EXPECT_EQ(stats.lanesPerGroup, testDevice().subgroups().size);
+    EXPECT_LE(stats.loopSteps + stats.restartedSteps, stats.groupLoopSteps * stats.lanesPerGroup);
+    EXPECT_GE(stats.groupLoopSteps, stats.maxPixelLoopSteps);
+}
+
 // The statistics summed over subgroups before the atomics (by shuffles in full subgroups, the
 // default where the device can require them, or by subgroupAdd) are the numbers one atomic per
 // invocation gives, with the budget small enough that pixels are given up, restarted and
