@@ -42,12 +42,14 @@ struct TraceCounters {
     std::uint64_t touchingProbes = 0;
     TraversalCounters traversal;
     std::vector<TracedRay>* tracedRays = nullptr;  // this thread's log, when one is asked for
+    std::uint32_t pixel = 0;                        // the pixel being traced, for the log
 
     template <class Real>
     void logRay(const Ray<Real>& ray, bool anyHit) {
         if (tracedRays)
             tracedRays->push_back({glm::vec3(ray.origin), float(ray.tMin), glm::vec3(ray.direction),
-                                   float(std::min<Real>(ray.tMax, Real(std::numeric_limits<float>::max()))), anyHit});
+                                   float(std::min<Real>(ray.tMax, Real(std::numeric_limits<float>::max()))), anyHit,
+                                   pixel});
     }
 
     void addTo(RenderStats& stats) const {
@@ -436,6 +438,7 @@ void renderRows(const Scene& scene, const Bvh& bvh, unsigned threadCount, const 
         if (options.tracedRays) counters.tracedRays = &threadRays[thread];
         for (std::uint32_t y = nextRow++; y < height; y = nextRow++) {
             for (std::uint32_t x = 0; x < width; ++x) {
+                counters.pixel = y * width + x;
                 const glm::vec<3, Real> c = tracer.renderPixel(x, y, counters);
                 // The render model's invariant: no NaN, Inf or negative value in any pixel.
                 glm::vec3 pixel(c);

@@ -22,6 +22,7 @@ struct TracedRay {
     glm::vec3 direction;  // not unit for shadow rays: o + t d reaches the light at t = 1
     float tMax;
     bool anyHit;  // a shadow ray (any hit in (tMin, tMax)); otherwise the closest hit is wanted
+    std::uint32_t pixel;  // whose ray tree it belongs to: y * width + x
 };
 
 struct ReferenceOptions {
@@ -29,7 +30,8 @@ struct ReferenceOptions {
     unsigned threads = 0;  // 0: all hardware threads
     std::function<void(double)> progress;  // fraction done, called from worker threads
     // When set, every primary, shadow, reflected and refracted ray is appended (touching probes
-    // are not rays of the tree and are left out), in no particular order.
+    // are not rays of the tree and are left out): the pixels in no particular order, each
+    // pixel's rays together and in the order they were traced.
     std::vector<TracedRay>* tracedRays = nullptr;
 };
 

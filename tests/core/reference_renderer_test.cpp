@@ -2,6 +2,7 @@
 // (../shared/seed/dielectrics-lecture.txt) and from hand calculation, on scenes built in code.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -558,7 +559,9 @@ TEST(ReferenceRenderer, ThreadCountDoesNotChangeTheImage) {
 
 TEST(ReferenceRenderer, TracedRayLogHoldsEveryRayOfTheTree) {
     // The log is what bench/whitted_bench.cpp replays with Embree: it must hold exactly the rays
-    // the counters count, each the kind it claims, the primary rays from the camera.
+    // the counters count, each the kind it claims, the primary rays from the camera; and, for its
+    // model of ray schedules (bench/ray_schedules.h), each pixel's rays together, the first its
+    // primary ray.
     const Scene scene = mixedScene();
     const Bvh bvh = buildBvh(scene.triangles);
     RenderStats stats;
@@ -579,6 +582,17 @@ TEST(ReferenceRenderer, TracedRayLogHoldsEveryRayOfTheTree) {
     EXPECT_GT(stats.rays.refraction, 0u);
     EXPECT_EQ(shadow, stats.rays.shadow);
     EXPECT_EQ(fromCamera, stats.rays.primary);
+    const std::uint32_t pixels = scene.camera.width * scene.camera.height;
+    ASSERT_EQ(stats.rays.primary, std::uint64_t(pixels) * scene.settings.samplesPerPixel);
+    std::vector<std::uint32_t> runs(pixels, 0u);  // runs of consecutive rays of each pixel
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        ASSERT_LT(rays[i].pixel, pixels);
+        if (i == 0 || rays[i].pixel != rays[i - 1].pixel) {
+            ++runs[rays[i].pixel];
+            EXPECT_TRUE(!rays[i].anyHit && rays[i].origin == scene.camera.from) << "ray " << i;
+        }
+    }
+    EXPECT_EQ(std::count(runs.begin(), runs.end(), 1u), std::ptrdiff_t(pixels));
     // Logging changes nothing else.
     EXPECT_EQ(logged.pixels, render(scene).pixels);
 }
