@@ -132,7 +132,7 @@ RenderCommand parse(int argc, char** argv, int first) {
             if (b.x < 0 || b.y < 0 || b.z < 0) throw InputError("--background must not be negative");
             c.background = b;
         } else if (flag == "--stats") c.statsPath = args.valueOf(flag);
-        else if (flag == "--iteration-budget") c.gpu.iterationBudget = Arguments::toUint(flag, args.valueOf(flag), 16, 1u << 24);
+        else if (flag == "--iteration-budget") c.gpu.iterationBudget = Arguments::toUint(flag, args.valueOf(flag), kMinIterationBudget, 1u << 24);
         else if (flag == "--tile") c.gpu.tileSize = Arguments::toUint(flag, args.valueOf(flag), 8, 4096);
         else if (flag == "--no-specialize") c.gpu.specialize = false;
         else if (flag.rfind("-", 0) == 0) throw InputError("unknown option " + flag + " (see vitrum render --help)");

@@ -66,6 +66,10 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     if (scene.triangles.size() > gpu::kMaxTriangles)
         throw InputError("the scene has " + std::to_string(scene.triangles.size()) +
                          " triangles; the Vulkan backend traces at most " + std::to_string(gpu::kMaxTriangles));
+    if (options.iterationBudget < kMinIterationBudget)
+        throw InputError("an iteration budget of " + std::to_string(options.iterationBudget) +
+                         " steps: a dispatch needs at least " + std::to_string(kMinIterationBudget) +
+                         " for every pixel to finish");
     stats.backend = "vulkan";
     stats.device = device.name();
     stats.features = analyseScene(scene);

@@ -15,6 +15,13 @@
 
 namespace vitrum {
 
+// The smallest iteration budget with which every dispatch moves each SIMD group on (a node
+// visited, a triangle tested or a traversal finished and shaded): the triangle loop of a
+// traversal resumed inside a leaf starts after three counted steps (the round's, the traversal
+// loop's and the skipped node loop's), so with fewer a pixel could stop before it again and again
+// and never finish.
+inline constexpr std::uint32_t kMinIterationBudget = 4;
+
 struct VulkanRenderOptions {
     // Loop steps per SIMD group and dispatch: lavapipe ends a shader's loops after 65,535
     // iterations of the group, and the kernel counts those (trace.comp); three quarters of the

@@ -1,6 +1,7 @@
 // Glass, water and plastic: the ray tree with its medium stack, GPU against CPU on every
 // dielectric scene at depth 10 with both Fresnel models, touching media, and the loop limit.
 #include "gpu_test_support.h"
+#include "common/error.h"
 
 #include <nlohmann/json.hpp>
 
@@ -214,6 +215,24 @@ TEST(LoopLimit, TinyBudgetGivesTheImageOfOneDispatch) {
     EXPECT_EQ(whole.rays.total(), split.rays.total());
     EXPECT_EQ(whole.nodeVisits, split.nodeVisits);
     EXPECT_EQ(split.limits.loopLimitSuspected, 0u);
+}
+
+// Below kMinIterationBudget a traversal resumed inside a leaf could stop before its first
+// triangle test in every dispatch, and the host would dispatch the tile forever: such a budget is
+// refused. At the minimum every pixel still finishes, with the image and rays of one dispatch.
+TEST(LoopLimit, TheSmallestBudgetStillFinishesEveryPixel) {
+    Scene scene = loadSized("scenes/demo.json", 8, 4, FresnelModel::Exact);
+    const Bvh bvh = buildBvh(scene.triangles);
+    RenderStats refused, whole, smallest;
+    EXPECT_THROW(renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = kMinIterationBudget - 1},
+                              refused),
+                 InputError);
+    const Image a = renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{}, whole);
+    const Image b =
+        renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = kMinIterationBudget}, smallest);
+    EXPECT_GT(smallest.dispatches, 100u);
+    EXPECT_EQ(a.pixels, b.pixels);
+    EXPECT_EQ(whole.rays.total(), smallest.rays.total());
 }
 
 // The kernel's count of its SIMD groups' steps (group_loop_steps) against the budget, which it is
