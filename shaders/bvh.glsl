@@ -110,8 +110,8 @@ bool traverse(uint mode, inout uint steps, uint budget) {
     // runs it as often as its longest lane, and once, masked, when no lane enters it.
     // lavapipe counts the group's iterations against its limit, not a lane's: lanes that finish
     // a loop early wait for the others. So each inner loop adds the most iterations any lane ran
-    // in it, plus one (for a loop no lane enters), to `steps`, which stays the same in all lanes
-    // still in the outer loop. gPixelSteps counts the iterations this lane ran.
+    // in it, or one for a loop no lane enters, to `steps`, which stays the same in all lanes still
+    // in the outer loop: the iterations the group ran. gPixelSteps counts those this lane ran.
     if (steps < budget) do {
         steps += 1u;
         gPixelSteps += 1u;
@@ -138,7 +138,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
             }
         } while (cursor >= leafEnd && steps + nodeSteps < budget);
         gPixelSteps += nodeSteps;
-        steps += groupMax(nodeSteps) + 1u;  // + one for a loop no lane enters (its body runs once, masked)
+        steps += max(groupMax(nodeSteps), 1u);  // a loop no lane enters runs its body once, masked
         uint triangleSteps = 0u;
         if (cursor < leafEnd && steps < budget) do {
             triangleSteps += 1u;
@@ -164,9 +164,8 @@ bool traverse(uint mode, inout uint steps, uint budget) {
             }
         } while (cursor < leafEnd && steps + triangleSteps < budget);
         gPixelSteps += triangleSteps;
-        steps += groupMax(triangleSteps) + 1u;
+        steps += max(groupMax(triangleSteps), 1u);
     } while (!over && steps < budget);
-    steps += 1u;  // margin: the outer loop is a do-while and runs no extra test iteration
     // Suspended: the entry in hand goes back on the stack (pushes leave it a free slot).
     if (!over && current != kNoEntry) {
         gStack[top] = current;
