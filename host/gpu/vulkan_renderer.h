@@ -24,8 +24,9 @@ inline constexpr std::uint32_t kMinIterationBudget = 4;
 
 struct VulkanRenderOptions {
     // Loop steps per SIMD group and dispatch: lavapipe ends a shader's loops after 65,535
-    // iterations of the group, and the kernel counts those (trace.comp); three quarters of the
-    // limit leave room for rounding in that count. Larger values (tests only) let the limit show.
+    // iterations of the group, and the kernel counts those (trace.comp) but for the few after its
+    // last counted step; three quarters of the limit leave room for those and for drivers that
+    // count differently. Larger values (tests only) let the limit show.
     std::uint32_t iterationBudget = 49152;
     std::uint32_t tileSize = 256;  // pixels per side; a pixel's trace state is 0.5-1.5 KiB
     // Build the kernel for what the scene needs (render/trace_specialization.h); false: the
