@@ -6,6 +6,7 @@
 
 #ifndef VITRUM_NO_SUBGROUP_OPERATIONS
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_ballot : require
 #endif
 
 // The largest `value` of the active lanes.
@@ -23,6 +24,15 @@ bool firstLane() {
     return true;
 #else
     return subgroupElect();
+#endif
+}
+
+// `value` as the lowest active lane has it.
+uint fromFirstLane(uint value) {
+#ifdef VITRUM_NO_SUBGROUP_OPERATIONS
+    return value;
+#else
+    return subgroupBroadcastFirst(value);
 #endif
 }
 

@@ -103,14 +103,32 @@ void beginClosestTraversal() {
     st.control.x = kPhaseTrace;
 }
 
-// This invocation's pixel, relative to the tile: its workgroup's 8x8 block, walked in Morton
-// order, so that the 8 lanes of a lavapipe SIMD group cover 4x2 pixels rather than a row of 8.
-// Nearer pixels send nearer rays, which visit more of the same BVH nodes: the group's loops run
-// fewer iterations (docs/gpu-design.md).
+// This invocation's pixel, relative to the tile. A workgroup's worth of pixels is an 8x8 block,
+// walked in Morton order, so that the 8 lanes of a lavapipe SIMD group cover 4x2 pixels rather
+// than a row of 8: nearer pixels send nearer rays, which visit more of the same BVH nodes, and
+// the group's loops run fewer iterations (docs/gpu-design.md).
+//
+// Which block: lavapipe splits a dispatch's workgroups, in order, into one run of consecutive
+// workgroups a thread (Mesa's lp_cs_tpool), so a thread whose run covers the glass works on while
+// the other waits. Where subgroups are full, each subgroup instead takes the dispatch's next
+// unit, a subgroup's share of a block, from a counter as it starts: the threads take turns
+// through the tile, each near the other, and a unit is the same pixels whichever thread takes it
+// (so are the images and statistics). Elsewhere a workgroup traces its own block.
 uvec2 tilePixel() {
+    uvec2 block = gl_WorkGroupID.xy;
     uint i = gl_LocalInvocationIndex;
+#ifndef VITRUM_NO_SUBGROUP_OPERATIONS
+    if (kFullSubgroups) {
+        uint unit = 0u;
+        if (firstLane()) unit = atomicAdd(stats[kWorkCursor], 1u);
+        unit = fromFirstLane(unit);
+        uint blockIndex = unit / gl_NumSubgroups;
+        block = uvec2(blockIndex % gl_NumWorkGroups.x, blockIndex / gl_NumWorkGroups.x);
+        i = (unit % gl_NumSubgroups) * gl_SubgroupSize + gl_SubgroupInvocationID;
+    }
+#endif
     uvec2 inBlock = uvec2((i & 1u) | ((i >> 1u) & 2u) | ((i >> 2u) & 4u), ((i >> 1u) & 1u) | ((i >> 2u) & 2u) | ((i >> 3u) & 4u));
-    return gl_WorkGroupID.xy * gl_WorkGroupSize.xy + inBlock;
+    return block * gl_WorkGroupSize.xy + inBlock;
 }
 
 void startPrimaryRay() {

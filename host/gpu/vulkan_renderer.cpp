@@ -107,8 +107,8 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "traversal stacks of one tile");
     stats.stateBytesPerPixel = sizeof(gpu::TraceState) + kernel.pendingRayCapacity * sizeof(gpu::PendingRay) +
                                gpu::kTraversalStackSize * sizeof(std::uint32_t);
-    GpuBuffer counters(device, gpu::kStatCount * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                       "statistics");
+    GpuBuffer counters(device, gpu::kDispatchCounterCount * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                       "statistics and work cursor");
     stats.addPhase("upload", secondsSince(start));
 
     start = Clock::now();
@@ -152,7 +152,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     // inside the image are dispatched.
     auto dispatch = [&](const ComputePipeline& pipeline) {
         std::memcpy(params.mapped(), &p, sizeof(p));
-        std::memset(counterValues, 0, gpu::kStatCount * sizeof(std::uint32_t));
+        std::memset(counterValues, 0, gpu::kDispatchCounterCount * sizeof(std::uint32_t));
         const std::uint32_t groupsX = (std::min(p.tile.z, width - p.tile.x) + kTraceGroupSize - 1) / kTraceGroupSize;
         const std::uint32_t groupsY = (std::min(p.tile.w, height - p.tile.y) + kTraceGroupSize - 1) / kTraceGroupSize;
         device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, groupsX, groupsY); });

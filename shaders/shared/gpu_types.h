@@ -202,7 +202,7 @@ struct TraceState {
 
 // ---- Render statistics (storage buffer of uints, one counter each) -----------------------------
 // Zeroed before and read after every dispatch by the host, which sums them in 64 bits: a single
-// dispatch cannot overflow them.
+// dispatch cannot overflow them. The same buffer holds the dispatch's work cursor (kWorkCursor).
 VITRUM_CONST uint kStatPrimaryRays = 0u;
 VITRUM_CONST uint kStatShadowRays = 1u;
 VITRUM_CONST uint kStatReflectionRays = 2u;
@@ -231,6 +231,10 @@ VITRUM_CONST uint kStatMaxPixelSteps = 20u;      // most loop steps one pixel ne
 VITRUM_CONST uint kStatMaxRayDepth = 21u;        // deepest ray traced
 VITRUM_CONST uint kStatMaxMediumDepth = 22u;     // most media one ray was inside
 VITRUM_CONST uint kStatCount = 23u;
+// Not a statistic, but zeroed with them: the dispatch's next unit of work, which each subgroup
+// takes as it starts (trace.comp's tilePixel).
+VITRUM_CONST uint kWorkCursor = 23u;
+VITRUM_CONST uint kDispatchCounterCount = 24u;  // the buffer's uints: the statistics and the cursor
 
 // ---- Sampling -------------------------------------------------------------------------------
 // The integer hash both backends use for jitter, so that their samples are bit-identical:
