@@ -307,5 +307,31 @@ TEST(Statistics, SubgroupSumsCountWhatPlainAtomicsCount) {
     }
 }
 
+// Each subgroup takes the dispatch's next unit of pixels from a counter (trace.comp's tilePixel),
+// so which invocation traces which pixels changes from run to run with the timing of lavapipe's
+// threads. A unit is always the same pixels, so nothing may change with it: every statistic and
+// the image are the same in every run, with a budget small enough that pixels are given up,
+// restarted and suspended too.
+TEST(Statistics, AreTheSameWhicheverInvocationTakesWhichPixels) {
+    Scene scene = loadSized("scenes/demo.json", 45, 30, FresnelModel::Exact);
+    const Bvh bvh = buildBvh(scene.triangles);
+    Image first;
+    RenderStats firstStats;
+    first = renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = 300, .tileSize = 24}, firstStats);
+    EXPECT_GT(firstStats.restartedPixels, 0u);
+    auto counters = [](const RenderStats& stats) {
+        nlohmann::json json = toJson(stats);
+        json.erase("seconds");
+        return json;
+    };
+    for (int run = 0; run < 4; ++run) {
+        RenderStats stats;
+        const Image image =
+            renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = 300, .tileSize = 24}, stats);
+        EXPECT_EQ(image.pixels, first.pixels);
+        EXPECT_EQ(counters(stats), counters(firstStats));
+    }
+}
+
 }  // namespace
 }  // namespace vitrum::testing
