@@ -315,9 +315,9 @@ TEST(Statistics, SubgroupSumsCountWhatPlainAtomicsCount) {
 TEST(Statistics, AreTheSameWhicheverInvocationTakesWhichPixels) {
     Scene scene = loadSized("scenes/demo.json", 45, 30, FresnelModel::Exact);
     const Bvh bvh = buildBvh(scene.triangles);
-    Image first;
+    const VulkanRenderOptions options{.iterationBudget = 300, .tileSize = 24};
     RenderStats firstStats;
-    first = renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = 300, .tileSize = 24}, firstStats);
+    const Image first = renderVulkan(testDevice(), scene, bvh, options, firstStats);
     EXPECT_GT(firstStats.restartedPixels, 0u);
     auto counters = [](const RenderStats& stats) {
         nlohmann::json json = toJson(stats);
@@ -326,8 +326,7 @@ TEST(Statistics, AreTheSameWhicheverInvocationTakesWhichPixels) {
     };
     for (int run = 0; run < 4; ++run) {
         RenderStats stats;
-        const Image image =
-            renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = 300, .tileSize = 24}, stats);
+        const Image image = renderVulkan(testDevice(), scene, bvh, options, stats);
         EXPECT_EQ(image.pixels, first.pixels);
         EXPECT_EQ(counters(stats), counters(firstStats));
     }
