@@ -35,6 +35,12 @@ void beginTraversal(vec3 origin, vec3 direction, float tMin, float tMax) {
 // `current` and pushes the farther one when both are. When neither is hit, the next entry comes
 // off the stack at once; `over` when the stack is empty. The stack's top is read before the node,
 // so that the two reads overlap and the next node's read waits for neither.
+//
+// The far child is written to the free slot above the top in every visit, and the top raised
+// only when it is pushed. On lavapipe a lane's store to a private array is a branch a lane (store
+// the new value or the old one), and the branches of a store made only when both boxes are hit
+// follow each lane's boxes, which the CPU cannot predict; in every visit they follow only which
+// lanes are still in the loop (docs/gpu-design.md).
 void visitInteriorNode(inout uint current, inout uint top, inout bool over, vec3 direction, BoxRay ray, float tMin,
                        float tMax) {
     uint below = gStack[top == 0u ? 0u : top - 1u];
@@ -48,19 +54,19 @@ void visitInteriorNode(inout uint current, inout uint top, inout bool over, vec3
     bool hitFar = negative ? hit0 : hit1;
     uint entry0 = floatBitsToUint(node.min0.w);
     uint entry1 = floatBitsToUint(node.min1.w);
+    uint farEntry = negative ? entry0 : entry1;
+    gStack[top] = farEntry;
     current = hitNear ? (negative ? entry1 : entry0) : below;
     if (!hitFar) {
         if (!hitNear && top == 0u) over = true;
         else if (!hitNear) top -= 1u;
         return;
     }
-    uint farEntry = negative ? entry0 : entry1;
     if (!hitNear) {
         current = farEntry;
     } else if (top + 2u > kTraversalStackSize) {
         gTraversalOverflows += 1u;  // the far child is dropped, never silently
     } else {
-        gStack[top] = farEntry;
         top += 1u;
     }
 }
