@@ -72,21 +72,23 @@ void visitInteriorNode(inout uint current, inout uint top, inout bool over, vec3
 }
 
 // Runs the traversal begun by beginTraversal while the SIMD group has run fewer than `budget`
-// steps. `steps` is the group's count: the same in all its lanes on entry, and on return the
-// group's count in the lane that traversed longest (trace.comp takes the maximum). Each loop
+// steps, in the lanes where `tracing`; every lane of the subgroup calls it, and stays in its outer
+// loop until the group's last traversal is over, so that groupMax may read every lane (lanes.glsl).
+// `steps` is the group's count, the same in all its lanes on entry and on return. Each loop
 // iteration is one step: a triangle test, an interior node whose two children's boxes it tests
 // (in the manner of Aila and Laine 2009), or taking a leaf off the stack. Returns true when it is
 // over: the closest hit (or, for kTraverseAny, some hit) is in st.traversal.z, its t in
 // st.traceDirection.w and its barycentrics in st.hitUv.zw. With the touching probe on, a
 // closest-hit traversal also collects the glass triangles within the touching distance beyond
 // the closest hit (touching.glsl) in st.touching and st.probe. Returns false when the budget ran
-// out first; the state is then back in `st` and a later call resumes it.
+// out first; the state is then back in `st` and a later call resumes it. A lane that is not
+// tracing returns true and leaves `st` as it was.
 //
 // The ray and the cursor live in locals while it runs, the stack in the private array gStack
 // (trace.comp saves it to traversalStacks[] only when the pixel is suspended mid-traversal).
 // Nodes are visited depth first, near child (by the split axis) first, as
 // host/bvh/bvh_traversal.cpp does, so both find the same closest triangle, ties included.
-bool traverse(uint mode, inout uint steps, uint budget) {
+bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     vec3 origin = st.traceOrigin.xyz;
     float tMin = st.traceOrigin.w;
     vec3 direction = st.traceDirection.xyz;
@@ -107,7 +109,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
         top = 0u;
         current = params.bvh.x;
     }
-    bool over = false;
+    bool over = !tracing;
     // Aila and Laine's "while-while": inner nodes until every lane of the SIMD group holds a leaf
     // (or is done), then that leaf's triangles, so that one loop iteration is one kind of work.
     // Every loop is written `if (c) do { ... } while (c)`: lavapipe tests a loop's exit at the end
@@ -116,13 +118,14 @@ bool traverse(uint mode, inout uint steps, uint budget) {
     // runs it as often as its longest lane, and once, masked, when no lane enters it.
     // lavapipe counts the group's iterations against its limit, not a lane's: lanes that finish
     // a loop early wait for the others. So each inner loop adds the most iterations any lane ran
-    // in it, or one for a loop no lane enters, to `steps`, which stays the same in all lanes still
-    // in the outer loop: the iterations the group ran. gPixelSteps counts those this lane ran.
-    if (steps < budget) do {
+    // in it, or one for a loop no lane enters, to `steps`, which stays the same in all lanes: the
+    // iterations the group ran. gPixelSteps counts those this lane ran. The outer loop runs while
+    // some lane's traversal is not over, and a lane whose traversal is over waits in it.
+    if (groupAny(!over) && steps < budget) do {
         steps += 1u;
-        gPixelSteps += 1u;
+        if (!over) gPixelSteps += 1u;
         // After a leaf (or on resuming between nodes), the next entry comes off the stack.
-        if (current == kNoEntry && cursor >= leafEnd) {
+        if (!over && current == kNoEntry && cursor >= leafEnd) {
             if (top == 0u) over = true;
             else {
                 top -= 1u;
@@ -146,7 +149,7 @@ bool traverse(uint mode, inout uint steps, uint budget) {
         gPixelSteps += nodeSteps;
         steps += max(groupMax(nodeSteps), 1u);  // a loop no lane enters runs its body once, masked
         uint triangleSteps = 0u;
-        if (cursor < leafEnd && steps < budget) do {
+        if (!over && cursor < leafEnd && steps < budget) do {
             triangleSteps += 1u;
             uint triangle = cursor;
             cursor += 1u;
@@ -171,7 +174,8 @@ bool traverse(uint mode, inout uint steps, uint budget) {
         } while (cursor < leafEnd && steps + triangleSteps < budget);
         gPixelSteps += triangleSteps;
         steps += max(groupMax(triangleSteps), 1u);
-    } while (!over && steps < budget);
+    } while (groupAny(!over) && steps < budget);
+    if (!tracing) return true;
     // Suspended: the entry in hand goes back on the stack (pushes leave it a free slot).
     if (!over && current != kNoEntry) {
         gStack[top] = current;

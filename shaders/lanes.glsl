@@ -7,16 +7,36 @@
 #ifndef VITRUM_NO_SUBGROUP_OPERATIONS
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_shuffle : require
 #endif
 
-// The largest `value` of the active lanes.
+// The largest `value` of the active lanes. lavapipe's subgroupMax is a loop over the 8 lanes
+// with a branch on each lane's mask (5% of a render's time); where subgroups are full
+// (kFullSubgroups) a butterfly of shuffles, max with the lane at distance 1, 2, 4, does the same
+// without a branch. A shuffle reads another lane, so there every lane of the subgroup must be
+// active where this is called: trace.comp's main loop and bvh.glsl's traversal keep their lanes
+// together until the last one is done.
 uint groupMax(uint value) {
 #ifdef VITRUM_NO_SUBGROUP_OPERATIONS
     return value;
 #else
-    return subgroupMax(value);
+    if (!kFullSubgroups) return subgroupMax(value);
+    // Written out, not a loop (whose iterations lavapipe would count against its limit), for
+    // subgroups of up to 128 lanes: gl_SubgroupSize is a constant where the driver compiles the
+    // kernel, so the rounds past it fold away.
+    if (gl_SubgroupSize > 1u) value = max(value, subgroupShuffleXor(value, 1u));
+    if (gl_SubgroupSize > 2u) value = max(value, subgroupShuffleXor(value, 2u));
+    if (gl_SubgroupSize > 4u) value = max(value, subgroupShuffleXor(value, 4u));
+    if (gl_SubgroupSize > 8u) value = max(value, subgroupShuffleXor(value, 8u));
+    if (gl_SubgroupSize > 16u) value = max(value, subgroupShuffleXor(value, 16u));
+    if (gl_SubgroupSize > 32u) value = max(value, subgroupShuffleXor(value, 32u));
+    if (gl_SubgroupSize > 64u) value = max(value, subgroupShuffleXor(value, 64u));
+    return value;
 #endif
 }
+
+// Whether `value` holds in some active lane (as groupMax: every lane where subgroups are full).
+bool groupAny(bool value) { return groupMax(value ? 1u : 0u) != 0u; }
 
 // Whether this is the one active lane that speaks for its subgroup.
 bool firstLane() {

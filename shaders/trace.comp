@@ -530,25 +530,30 @@ void main() {
     uint budget = params.counts.w;
     uint steps = 0u;
     if (st.control.x == kPhaseStartSample) startSample();
-    if (st.control.x != kPhaseDone && steps < budget) do {
+    // The loop runs while some lane of the group has a pixel that is not done; a lane that is
+    // done waits in it, as the traversal's lanes do (bvh.glsl), so that every lane reaches the
+    // groupMax calls. A lane whose traversal the budget stopped goes no further: the loop ends.
+    bool busy = st.control.x != kPhaseDone;
+    if (groupAny(busy) && steps < budget) do {
         steps += 1u;
-        gPixelSteps += 1u;
+        if (busy) gPixelSteps += 1u;
         uint phase = st.control.x;
-        bool traced = true;
-        if (phase == kPhaseTrace || phase == kPhaseShadow)
-            traced = traverse(kShadowRays && phase == kPhaseShadow ? kTraverseAny : kTraverseClosest, steps, budget);
-        steps = groupMax(steps);  // the lane that traversed longest has the group's count
-        if (!traced) break;
-        if (phase == kPhaseShadow) finishShadow();
-        else if (phase == kPhaseTrace) finishTrace();
-        // The hit's material, read once for the phases that follow (only lanes at a hit use it).
-        uint shadingPhase = st.control.x;
-        GpuMaterial m = loadMaterial(shadingPhase == kPhaseNextLight || shadingPhase == kPhaseScatter ? hitMaterial() : 0u);
-        if (shadingPhase == kPhaseNextLight) nextLight(m);  // may begin a shadow traversal
-        if (spawnsRays() && st.control.x == kPhaseScatter) scatter(m);
-        if (st.control.x == kPhaseNextRay) nextRay();  // begins a traversal or ends the sample
-        if (st.control.x == kPhaseStartSample) startSample();
-    } while (st.control.x != kPhaseDone && steps < budget);
+        bool traced = traverse(kShadowRays && phase == kPhaseShadow ? kTraverseAny : kTraverseClosest,
+                               phase == kPhaseTrace || phase == kPhaseShadow, steps, budget);
+        if (traced && busy) {
+            if (phase == kPhaseShadow) finishShadow();
+            else if (phase == kPhaseTrace) finishTrace();
+            // The hit's material, read once for the phases that follow (only lanes at a hit use it).
+            uint shadingPhase = st.control.x;
+            GpuMaterial m =
+                loadMaterial(shadingPhase == kPhaseNextLight || shadingPhase == kPhaseScatter ? hitMaterial() : 0u);
+            if (shadingPhase == kPhaseNextLight) nextLight(m);  // may begin a shadow traversal
+            if (spawnsRays() && st.control.x == kPhaseScatter) scatter(m);
+            if (st.control.x == kPhaseNextRay) nextRay();  // begins a traversal or ends the sample
+            if (st.control.x == kPhaseStartSample) startSample();
+        }
+        busy = st.control.x != kPhaseDone;
+    } while (groupAny(busy) && steps < budget);
 
     st.traversal.w += gPixelSteps;
     bool done = st.control.x == kPhaseDone;
