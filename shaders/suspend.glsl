@@ -35,8 +35,8 @@ void packState() {
     gStateTexels[7] = floatBitsToUint(st.hitNormal);
     gStateTexels[8] = floatBitsToUint(st.hitGeometricNormal);
     gStateTexels[9] = floatBitsToUint(st.hitUv);
-    gStateTexels[10] = floatBitsToUint(st.sampleColour);
-    gStateTexels[11] = floatBitsToUint(st.accumulated);
+    gStateTexels[10] = st.colourLow;
+    gStateTexels[11] = st.colourHigh;
     gStateTexels[kControlTexel] = st.control;
     gStateTexels[13] = st.traversal;
     gStateTexels[14] = st.touching;
@@ -54,8 +54,8 @@ void unpackState() {
     st.hitNormal = uintBitsToFloat(gStateTexels[7]);
     st.hitGeometricNormal = uintBitsToFloat(gStateTexels[8]);
     st.hitUv = uintBitsToFloat(gStateTexels[9]);
-    st.sampleColour = uintBitsToFloat(gStateTexels[10]);
-    st.accumulated = uintBitsToFloat(gStateTexels[11]);
+    st.colourLow = gStateTexels[10];
+    st.colourHigh = gStateTexels[11];
     st.control = gStateTexels[kControlTexel];
     st.traversal = gStateTexels[13];
     st.touching = gStateTexels[14];

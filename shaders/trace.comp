@@ -7,7 +7,8 @@
 // most `params.counts.w` steps per group. The first dispatch of a tile gives up the pixels that
 // are not done by then; the resumable build of this kernel (kResumable) restarts them and keeps
 // their state between its dispatches (suspend.glsl), and the host dispatches it until every pixel
-// of the tile is done. Nothing recurses.
+// of the tile is done. Nothing recurses. In the first dispatch, where subgroups are full, a lane
+// whose pixel is done takes pending rays of the other lanes of its group (ray_sharing.glsl).
 #extension GL_GOOGLE_include_directive : require
 // The default build uses subgroup operations: to count the SIMD group's loop iterations
 // (lanes.glsl) and to sum its statistics over each subgroup before adding them up atomically
@@ -29,6 +30,10 @@ uint gPixelSteps = 0u;  // loop iterations this pixel's lane ran (was active in)
 uint gNodeVisits = 0u;
 uint gTraversalOverflows = 0u;
 
+// What this round of shading (main's loop) adds to the pixel's colour: a float sum of a few
+// terms, added to the fixed-point sum once at the round's end (colour_sum.glsl).
+vec3 gRoundColour = vec3(0.0);
+
 uint gTouchingInterfaces = 0u;
 uint gTouchingProbes = 0u;
 uint gMediumStackOverflows = 0u;
@@ -36,8 +41,11 @@ uint gMediumStackOverflows = 0u;
 // This invocation's pixel in the image (main's tilePixel() in the tile).
 uvec2 gPixel = uvec2(0u);
 
-// This pixel's pending rays: pendingRays[pendingBase .. pendingBase + kPendingRayCapacity).
+// This pixel's pending rays: pendingRays[pendingBase .. pendingBase + kPendingRayCapacity), the
+// ones waiting from gBottom up to st.control.y; below gBottom, those that other lanes took
+// (ray_sharing.glsl).
 uint pendingBase = 0u;
+uint gBottom = 0u;
 // This pixel's BVH traversal stack, in private memory while the kernel runs: on lavapipe that is
 // cheaper than a storage buffer, whose every access loops over the lanes. A pixel suspended in
 // the middle of a traversal keeps it in traversalStacks[stackBase .. stackBase + kTraversalStackSize).
@@ -50,6 +58,7 @@ uint gStack[kTraversalStackSize];
 #include "ray_offset.glsl"
 #include "texture.glsl"
 #include "background.glsl"
+#include "colour_sum.glsl"
 
 const uint kPhaseStartSample = 0u;  // make the next primary ray, or finish the pixel
 const uint kPhaseTrace = 1u;        // closest-hit traversal of st.ray
@@ -58,6 +67,8 @@ const uint kPhaseShadow = 3u;       // any-hit traversal towards light st.contro
 const uint kPhaseScatter = 4u;      // spawn reflected / refracted rays
 const uint kPhaseNextRay = 5u;      // pop a pending ray, or finish the sample
 const uint kPhaseDone = 6u;
+
+#include "ray_sharing.glsl"
 
 uint gPrimaryRays = 0u;
 uint gShadowRays = 0u;
@@ -134,13 +145,12 @@ uvec2 tilePixel() {
 void startPrimaryRay() {
     uvec2 pixel = gPixel;
     uint pixelIndex = pixel.y * params.image.x + pixel.x;
-    uint k = floatBitsToUint(st.accumulated.w);
+    uint k = st.colourLow.w;
     vec2 position = vec2(pixel) + sampleOffsetInPixel(pixelIndex, k, params.image.z, params.pass.y);
     st.ray.origin = vec4(params.cameraFrom.xyz, uintBitsToFloat(0u));
     st.ray.direction = vec4(cameraRayDirection(position), uintBitsToFloat(0u));
     st.ray.weight = vec4(1.0);
     st.ray.media = uvec4(0u);
-    st.sampleColour = vec4(0.0);
     st.control.y = 0u;
     if (params.image.w == 0u) {
         // max_depth 0: not even the primary ray is traced (render model); the sample is black.
@@ -164,7 +174,7 @@ void finishTrace() {
             escaped *= vec3(equal(mu, vec3(0.0)));
             gAbsorbedEscapes += 1u;
         }
-        st.sampleColour.xyz += escaped;
+        gRoundColour += escaped;
         st.control.x = kPhaseNextRay;
         return;
     }
@@ -218,7 +228,7 @@ void finishTrace() {
     if (dot(geometricNormal, d) > 0.0) st.hitGeometricNormal.xyz = -geometricNormal;
     if (dot(shadingNormal, d) > 0.0) st.hitNormal.xyz = -shadingNormal;
     if (usesMaterial(kMaterialNormal) && model == kMaterialNormal) {
-        st.sampleColour.xyz += st.ray.weight.xyz * (0.5 * st.hitNormal.xyz + 0.5);
+        gRoundColour += st.ray.weight.xyz * (0.5 * st.hitNormal.xyz + 0.5);
         st.control.x = kPhaseNextRay;
         return;
     }
@@ -262,7 +272,7 @@ void nextLight(GpuMaterial m) {
         return;
     }
     GpuLight light = loadLight(index);
-    st.sampleColour.xyz += st.ray.weight.xyz * light.colour.xyz * m.ambient.xyz;
+    gRoundColour += st.ray.weight.xyz * light.colour.xyz * m.ambient.xyz;
     vec3 direct = directLight(m, light);
     if (all(equal(direct, vec3(0.0)))) {
         st.control.z = index + 1u;
@@ -276,7 +286,7 @@ void nextLight(GpuMaterial m) {
 }
 
 void finishShadow() {
-    if (st.traversal.z == kNoTriangle) st.sampleColour.xyz += st.ray.weight.xyz * st.probe.yzw;
+    if (st.traversal.z == kNoTriangle) gRoundColour += st.ray.weight.xyz * st.probe.yzw;
     st.control.z += 1u;
     st.control.x = kPhaseNextLight;
 }
@@ -455,26 +465,36 @@ void scatter(GpuMaterial m) {
 }
 
 void nextRay() {
-    if (kPendingRayCapacity == 0u || st.control.y == 0u) {
-        uint done = floatBitsToUint(st.accumulated.w) + 1u;
-        st.accumulated = vec4(st.accumulated.xyz + st.sampleColour.xyz, uintBitsToFloat(done));
+    if (kPendingRayCapacity == 0u || st.control.y == gBottom) {
+        if (kRaySharing && gTaken) {
+            st.control.x = kPhaseDone;  // the taken tree is done: ray_sharing.glsl hands it back
+            return;
+        }
+        st.control.y = 0u;
+        gBottom = 0u;
+        st.colourLow.w += 1u;
         st.control.x = kPhaseStartSample;
         return;
     }
     st.control.y -= 1u;
+    if (kRaySharing) {
+        loadPendingRay(pendingBase + st.control.y);
+        return;
+    }
     st.ray = pendingRays[pendingBase + st.control.y];
     beginRay();
 }
 
 // The next sample's primary ray, or the end of the pixel.
 void startSample() {
-    if (floatBitsToUint(st.accumulated.w) >= params.image.z) st.control.x = kPhaseDone;
+    if (st.colourLow.w >= params.image.z) st.control.x = kPhaseDone;
     else startPrimaryRay();  // begins a traversal, or (max_depth 0) goes to kPhaseNextRay
 }
 
 // A pixel's first dispatch.
 void startPixel() {
-    st.accumulated = vec4(0.0, 0.0, 0.0, uintBitsToFloat(0u));
+    st.colourLow = uvec4(0u);
+    st.colourHigh = uvec4(0u);
     st.control = uvec4(kPhaseStartSample, 0u, 0u, 0u);
     st.traversal.w = 0u;
 }
@@ -533,14 +553,15 @@ void main() {
     // The loop runs while some lane of the group has a pixel that is not done; a lane that is
     // done waits in it, as the traversal's lanes do (bvh.glsl), so that every lane reaches the
     // groupMax calls. A lane whose traversal the budget stopped goes no further: the loop ends.
-    bool busy = st.control.x != kPhaseDone;
+    bool working = st.control.x != kPhaseDone;
+    bool busy = working;
     if (groupAny(busy) && steps < budget) do {
         steps += 1u;
-        if (busy) gPixelSteps += 1u;
+        if (working) gPixelSteps += 1u;
         uint phase = st.control.x;
         bool traced = traverse(kShadowRays && phase == kPhaseShadow ? kTraverseAny : kTraverseClosest,
                                phase == kPhaseTrace || phase == kPhaseShadow, steps, budget);
-        if (traced && busy) {
+        if (traced && working) {
             if (phase == kPhaseShadow) finishShadow();
             else if (phase == kPhaseTrace) finishTrace();
             // The hit's material, read once for the phases that follow (only lanes at a hit use it).
@@ -551,14 +572,31 @@ void main() {
             if (spawnsRays() && st.control.x == kPhaseScatter) scatter(m);
             if (st.control.x == kPhaseNextRay) nextRay();  // begins a traversal or ends the sample
             if (st.control.x == kPhaseStartSample) startSample();
+            addColour(st.colourLow, st.colourHigh, gRoundColour);
+            gRoundColour = vec3(0.0);
         }
-        busy = st.control.x != kPhaseDone;
+#ifndef VITRUM_NO_SUBGROUP_OPERATIONS
+        if (kRaySharing) {
+            shareRays(hasPixel);
+            if (gLoad) {
+                st.ray = pendingRays[gLoadIndex];
+                beginRay();
+                gLoad = false;
+            }
+        }
+#endif
+        working = st.control.x != kPhaseDone;
+        busy = working || gTaken;  // a lane done with a taken tree waits to hand it back
     } while (groupAny(busy) && steps < budget);
 
+    // A group cut by the budget after some lane took a ray gives up all its pixels
+    // (ray_sharing.glsl); then all the steps a lane ran are restarted steps.
+    bool givenUpGroup = kRaySharing && gGroupTook && groupAny(busy);
+    if (gTaken) gPixelSteps += gOwnSteps;
     st.traversal.w += gPixelSteps;
-    bool done = st.control.x == kPhaseDone;
+    bool done = st.control.x == kPhaseDone && !givenUpGroup;
     if (hasPixel) {
-        if (done) pixels[pixel.y * params.image.x + pixel.x] = vec4(st.accumulated.xyz / float(params.image.z), 1.0);
+        if (done) pixels[pixel.y * params.image.x + pixel.x] = vec4(colourOfSum(st.colourLow, st.colourHigh) / float(params.image.z), 1.0);
         if (kResumable) suspendState(slot, !done);
         else markSlot(slot, done);
     }

@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "box_test.spv.h"
+#include "colour_sum_test.spv.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/gpu_buffer.h"
 #include "optics_test.spv.h"
@@ -53,6 +54,11 @@ std::vector<TouchingResult> evaluateTouchingOnGpu(VulkanDevice& device, std::spa
 std::vector<BoxResult> evaluateBoxTestsOnGpu(VulkanDevice& device, std::span<const BoxCase> cases) {
     return runTestKernel<BoxCase, BoxResult>(device, code(box_test_spv), gpu::kBoxTestGroupSize, cases,
                                              "box test cases");
+}
+
+std::vector<ColourSumResult> evaluateColourSumsOnGpu(VulkanDevice& device, std::span<const ColourSumCase> cases) {
+    return runTestKernel<ColourSumCase, ColourSumResult>(device, code(colour_sum_test_spv), gpu::kColourSumTestGroupSize,
+                                                         cases, "colour sum test cases");
 }
 
 }  // namespace vitrum

@@ -4,6 +4,7 @@
 //   optics_test.comp    shaders/optics.glsl (reflection, refraction, Fresnel, Beer-Lambert)
 //   touching_test.comp  shaders/touching.glsl (touching glass surfaces during a traversal)
 //   box_test.comp       shaders/ray_box.glsl (the traversal's ray/box test)
+//   colour_sum_test.comp shaders/colour_sum.glsl (a pixel's colour sum in fixed point)
 #pragma once
 
 #include <span>
@@ -11,6 +12,7 @@
 
 #include "gpu/vulkan_device.h"
 #include "shared/box_test_types.h"
+#include "shared/colour_sum_test_types.h"
 #include "shared/optics_test_types.h"
 #include "shared/touching_test_types.h"
 
@@ -22,15 +24,19 @@ using TouchingCase = gpu::TouchingCase;
 using TouchingResult = gpu::TouchingResult;
 using BoxCase = gpu::BoxCase;
 using BoxResult = gpu::BoxResult;
+using ColourSumCase = gpu::ColourSumCase;
+using ColourSumResult = gpu::ColourSumResult;
 
 // std430 sizes, as the kernels see them.
 static_assert(sizeof(OpticsCase) == 64 && sizeof(OpticsResult) == 64);
 static_assert(sizeof(TouchingCase) == 128 && sizeof(TouchingResult) == 48);
 static_assert(sizeof(BoxCase) == 64 && sizeof(BoxResult) == 16);
+static_assert(sizeof(ColourSumCase) == 96 && sizeof(ColourSumResult) == 48);
 
 // Each evaluates every case on `device` in one dispatch and returns the results in the same order.
 std::vector<OpticsResult> evaluateOpticsOnGpu(VulkanDevice& device, std::span<const OpticsCase> cases);
 std::vector<TouchingResult> evaluateTouchingOnGpu(VulkanDevice& device, std::span<const TouchingCase> cases);
 std::vector<BoxResult> evaluateBoxTestsOnGpu(VulkanDevice& device, std::span<const BoxCase> cases);
+std::vector<ColourSumResult> evaluateColourSumsOnGpu(VulkanDevice& device, std::span<const ColourSumCase> cases);
 
 }  // namespace vitrum

@@ -188,8 +188,10 @@ struct TraceState {
     vec4 hitNormal;                      // shading normal, .w = material (uint bits)
     vec4 hitGeometricNormal;             // .w = object (uint bits)
     vec4 hitUv;                          // .xy = texture coordinates, .zw = barycentrics
-    vec4 sampleColour;                   // colour of the current sample so far
-    vec4 accumulated;                    // sum of finished samples; .w = samples done (uint bits)
+    uvec4 colourLow;                     // the pixel's colour so far, summed over its samples in
+                                         // fixed point (shaders/colour_sum.glsl): .xyz = low
+                                         // words; .w = samples done
+    uvec4 colourHigh;                    // .xyz = high words
     uvec4 control;                       // phase, pending rays, current light, traversal stack entries
     uvec4 traversal;                     // leaf cursor, leaf end, closest triangle, pixel's steps
     uvec4 touching;                      // other objects' glass surfaces at the hit: object | entering

@@ -209,7 +209,8 @@ TEST(LoopLimit, TinyBudgetGivesTheImageOfOneDispatch) {
     EXPECT_GT(split.restartedPixels, 24u * 18u / 2u);
     EXPECT_LE(split.restartedPixels, 24u * 18u);
     // A given-up attempt ran while its SIMD group had run fewer than the budget's steps, and a
-    // pixel runs at most its group's steps.
+    // lane runs at most its group's steps; a group whose lanes shared rays gives up all its
+    // pixels (shaders/ray_sharing.glsl), so its lanes' steps are spread over as many pixels.
     EXPECT_LE(split.restartedSteps, 7u * split.restartedPixels);
     EXPECT_GE(split.restartedSteps, split.restartedPixels);
     EXPECT_EQ(a.pixels, b.pixels);
@@ -241,7 +242,8 @@ TEST(LoopLimit, TheSmallestBudgetStillFinishesEveryPixel) {
 // group runs past it by more than two steps (a traversal at the budget still runs its node and
 // triangle loops once each, masked, shaders/bvh.glsl). A 4x2 image is one SIMD group on lavapipe, and on any device with subgroups
 // of 8 or more lanes. And a group runs every step any of its lanes runs: the lanes' own steps are
-// at most the group's, times its lanes.
+// at most the group's, times its lanes. (Not so a pixel's: lanes that take its pending rays run
+// its steps beside it, shaders/ray_sharing.glsl.)
 TEST(LoopLimit, AGroupRunsToItsBudgetAndNoFurther) {
     if (!testDevice().hasSubgroupArithmeticAndBallot()) GTEST_SKIP() << "the device has no subgroup arithmetic";
     if (testDevice().subgroups().size < 8) GTEST_SKIP() << "a 4x2 image is more than one subgroup";
@@ -255,7 +257,6 @@ TEST(LoopLimit, AGroupRunsToItsBudgetAndNoFurther) {
     EXPECT_LE(stats.groupLoopSteps, stats.dispatches * (kBudget + 2));
     EXPECT_EQ(stats.lanesPerGroup, testDevice().subgroups().size);
     EXPECT_LE(stats.loopSteps + stats.restartedSteps, stats.groupLoopSteps * stats.lanesPerGroup);
-    EXPECT_GE(stats.groupLoopSteps, stats.maxPixelLoopSteps);
 }
 
 // The statistics summed over subgroups before the atomics (by shuffles in full subgroups, the

@@ -1,0 +1,123 @@
+// Lanes whose pixel is done take pending rays from the other lanes of their subgroup.
+//
+// lavapipe runs the 8 lanes of a SIMD group in lock step until the last of them is done, so a
+// lane whose pixel finished early idles through every later round of its group: on the glass
+// scenes the groups' lanes are busy in only half to two thirds of their steps
+// (docs/gpu-design.md). A pixel's pending rays (trace.comp's pendingRays, refractions whose
+// reflection went first) are whole ray trees of their own: once a round (trace.comp's main
+// loop), one idle lane takes the bottom pending ray of the lane that has the most, the one its
+// owner would trace last, traces its tree, and when it is done hands the tree's colour sum and
+// steps back to the lane whose pixel the ray is of (its owner). Pending rays the taker pushes
+// meanwhile can be taken in turn; they are of the same owner.
+//
+// Nothing of the image or the statistics depends on who traces a ray: the colour is a sum in
+// fixed point (colour_sum.glsl), the same in any order; a taken ray's pending rays start at the
+// index it had in its owner's stack, so the stack's capacity cuts the same refractions; its
+// counters go to the lane that traced it and are summed with all the others; its steps go back
+// to its owner, so max_pixel_loop_steps is a pixel's steps whoever ran them. The only thing that
+// does depend on it is how many steps the group runs (group_loop_steps), which is the point.
+//
+// Only the first dispatch of a tile shares (the resumable kernel's state holds no owner), and
+// only where subgroups are full (every lane takes part in the shuffles). A group that is cut
+// by the step budget after some lane took a ray gives up all its pixels, finished or not: a
+// taken tree may be unfinished, or its rays counted by a lane whose own pixel is done. The
+// resumable kernel then traces them from their start, as every given-up pixel.
+#ifndef VITRUM_RAY_SHARING_GLSL
+#define VITRUM_RAY_SHARING_GLSL
+
+#ifdef VITRUM_NO_SUBGROUP_OPERATIONS
+const bool kRaySharing = false;
+#else
+const bool kRaySharing = kFullSubgroups && !kResumable && kPendingRayCapacity > 0u;
+#endif
+
+bool gTaken = false;     // this lane traces (or has traced) a tree taken from its owner gOwner
+uint gOwner = 0u;
+// This lane's own pixel's colour sum and steps, kept while it traces a taken tree.
+uvec3 gOwnLow = uvec3(0u);
+uvec3 gOwnHigh = uvec3(0u);
+uint gOwnSteps = 0u;
+bool gGroupTook = false;  // some lane of the group took a ray: the same in every lane
+
+// Where a pending ray is read, for this round's one load (trace.comp's main): on lavapipe every
+// storage-buffer load site is a loop over the lanes, whether a lane loads or not.
+uint gLoadIndex = 0u;
+bool gLoad = false;
+
+void loadPendingRay(uint index) {
+    gLoadIndex = index;
+    gLoad = true;
+    st.control.x = kPhaseTrace;  // beginRay, once the ray is read, begins its traversal
+}
+
+#ifndef VITRUM_NO_SUBGROUP_OPERATIONS
+// Serves one idle lane: called once a round by every lane of the subgroup, after shading.
+// `canTake`: the lane has a slot of its own for the pending rays of a taken tree (it has a pixel).
+// (Serving two or three lanes a round cut the group steps of geospheres_5x5_glass by only 2.6 and
+// 3.3% more, for more work every round: docs/gpu-design.md.)
+void shareRays(bool canTake) {
+    uint self = gl_SubgroupInvocationID;
+    bool idle = st.control.x == kPhaseDone;
+    // The lane served this round: one done with a taken tree first (its owner waits for it),
+    // else any idle one.
+    uint servedKey = idle && (gTaken || canTake) ? (gTaken ? 0x100u : 0u) | (self + 1u) : 0u;
+    uint served = groupMax(servedKey);
+    // The lane to take from: the most pending rays (of the lowest lane among equals).
+    uint available = idle ? 0u : st.control.y - gBottom;
+    uint best = groupMax(available > 0u ? (available << 8u) | (255u - self) : 0u);
+    if (served == 0u) return;
+    uint taker = (served & 0xFFu) - 1u;
+
+    if ((served & 0x100u) != 0u) {
+        // Hand the taken tree's colour and steps back to its owner.
+        uvec3 low = subgroupShuffle(st.colourLow.xyz, taker);
+        uvec3 high = subgroupShuffle(st.colourHigh.xyz, taker);
+        uint steps = subgroupShuffle(gPixelSteps, taker);
+        uint owner = subgroupShuffle(gOwner, taker);
+        if (self == owner) {
+            if (gTaken) {  // the owner is tracing a taken tree itself (maybe this one's)
+                uvec4 ownLow = uvec4(gOwnLow, 0u), ownHigh = uvec4(gOwnHigh, 0u);
+                addColourSums(ownLow, ownHigh, low, high);
+                gOwnLow = ownLow.xyz;
+                gOwnHigh = ownHigh.xyz;
+                gOwnSteps += steps;
+            } else {
+                addColourSums(st.colourLow, st.colourHigh, low, high);
+                gPixelSteps += steps;
+            }
+        }
+        if (self == taker) {
+            st.colourLow.xyz = gOwnLow;
+            st.colourHigh.xyz = gOwnHigh;
+            gPixelSteps = gOwnSteps;
+            gTaken = false;
+        }
+    }
+
+    if (best == 0u) return;
+    uint donor = 255u - (best & 0xFFu);
+    uint index = subgroupShuffle(pendingBase + gBottom, donor);
+    uint bottom = subgroupShuffle(gBottom, donor);
+    uint owner = subgroupShuffle(gTaken ? gOwner : self, donor);
+    gGroupTook = true;
+    // The donor wrote the ray in an earlier round: order its write before the taker's read.
+    subgroupBarrier();
+    if (self == donor) gBottom += 1u;
+    if (self == taker) {
+        gOwnLow = st.colourLow.xyz;
+        gOwnHigh = st.colourHigh.xyz;
+        gOwnSteps = gPixelSteps;
+        st.colourLow.xyz = uvec3(0u);
+        st.colourHigh.xyz = uvec3(0u);
+        gPixelSteps = 0u;
+        gTaken = true;
+        gOwner = owner;
+        // Its tree's pending rays go where its owner's would have: the same capacity is left.
+        st.control.y = bottom;
+        gBottom = bottom;
+        loadPendingRay(index);
+    }
+}
+#endif
+
+#endif
