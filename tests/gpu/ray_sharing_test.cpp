@@ -66,6 +66,29 @@ TEST(RaySharing, TakenRaysChangeNothingButTheGroupsSteps) {
     EXPECT_GE(shared.stats.groupLoopSteps * shared.stats.lanesPerGroup, shared.stats.loopSteps);
 }
 
+// With 4 samples a pixel, a pixel's lane goes on to its next sample while other lanes trace the
+// trees its last one left pending. Without sharing, some groups here need more than one dispatch
+// (and the pixels they give up are traced again by the resumable kernel, which never shares):
+// the dispatches and restarts differ, and a pixel suspended there counts a step or two more
+// where it resumes; what is traced does not differ.
+TEST(RaySharing, TakenRaysOfEarlierSamplesChangeNothingThatIsTraced) {
+    skipUnlessSharing();
+    Scene scene = diamond(8, 6, 20);
+    scene.settings.samplesPerPixel = 4;
+    const Render shared = render(scene, StatisticsSums::shuffles, 65400);
+    const Render alone = render(scene, StatisticsSums::subgroupAdd, 65400);
+    EXPECT_EQ(shared.image.pixels, alone.image.pixels);
+    nlohmann::json a = counters(shared.stats), b = counters(alone.stats);
+    for (const char* differs :
+         {"dispatches", "restarted_pixels", "restarted_steps", "loop_steps", "max_pixel_loop_steps"}) {
+        a.erase(differs);
+        b.erase(differs);
+    }
+    EXPECT_EQ(a, b);
+    EXPECT_GT(shared.stats.limits.rayStackOverflow, 0u) << "the scene no longer overflows the pending-ray stack";
+    EXPECT_LT(shared.stats.groupLoopSteps, alone.stats.groupLoopSteps);
+}
+
 // A group cut by the step budget after one of its lanes took a ray gives up all its pixels, also
 // the finished ones (their rays may be in another lane's counters, a taken tree unfinished); the
 // resumable kernel traces them again, and the image and the rays are still those of one
