@@ -33,22 +33,12 @@ const bool kRaySharing = kFullSubgroups && !kResumable && kPendingRayCapacity > 
 
 bool gTaken = false;     // this lane traces (or has traced) a tree taken from its owner gOwner
 uint gOwner = 0u;
-// This lane's own pixel's colour sum and steps, kept while it traces a taken tree.
-uvec3 gOwnLow = uvec3(0u);
-uvec3 gOwnHigh = uvec3(0u);
+// This lane's own pixel's colour sum (.xyz, as st.colourLow/High) and steps, kept while it
+// traces a taken tree.
+uvec4 gOwnLow = uvec4(0u);
+uvec4 gOwnHigh = uvec4(0u);
 uint gOwnSteps = 0u;
 bool gGroupTook = false;  // some lane of the group took a ray: the same in every lane
-
-// Where a pending ray is read, for this round's one load (trace.comp's main): on lavapipe every
-// storage-buffer load site is a loop over the lanes, whether a lane loads or not.
-uint gLoadIndex = 0u;
-bool gLoad = false;
-
-void loadPendingRay(uint index) {
-    gLoadIndex = index;
-    gLoad = true;
-    st.control.x = kPhaseTrace;  // beginRay, once the ray is read, begins its traversal
-}
 
 #ifndef VITRUM_NO_SUBGROUP_OPERATIONS
 // Serves one idle lane: called once a round by every lane of the subgroup, after shading.
@@ -76,10 +66,7 @@ void shareRays(bool canTake) {
         uint owner = subgroupShuffle(gOwner, taker);
         if (self == owner) {
             if (gTaken) {  // the owner is tracing a taken tree itself (maybe this one's)
-                uvec4 ownLow = uvec4(gOwnLow, 0u), ownHigh = uvec4(gOwnHigh, 0u);
-                addColourSums(ownLow, ownHigh, low, high);
-                gOwnLow = ownLow.xyz;
-                gOwnHigh = ownHigh.xyz;
+                addColourSums(gOwnLow, gOwnHigh, low, high);
                 gOwnSteps += steps;
             } else {
                 addColourSums(st.colourLow, st.colourHigh, low, high);
@@ -87,8 +74,8 @@ void shareRays(bool canTake) {
             }
         }
         if (self == taker) {
-            st.colourLow.xyz = gOwnLow;
-            st.colourHigh.xyz = gOwnHigh;
+            st.colourLow.xyz = gOwnLow.xyz;
+            st.colourHigh.xyz = gOwnHigh.xyz;
             gPixelSteps = gOwnSteps;
             gTaken = false;
         }
@@ -104,8 +91,8 @@ void shareRays(bool canTake) {
     subgroupBarrier();
     if (self == donor) gBottom += 1u;
     if (self == taker) {
-        gOwnLow = st.colourLow.xyz;
-        gOwnHigh = st.colourHigh.xyz;
+        gOwnLow.xyz = st.colourLow.xyz;
+        gOwnHigh.xyz = st.colourHigh.xyz;
         gOwnSteps = gPixelSteps;
         st.colourLow.xyz = uvec3(0u);
         st.colourHigh.xyz = uvec3(0u);

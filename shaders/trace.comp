@@ -46,6 +46,11 @@ uvec2 gPixel = uvec2(0u);
 // (ray_sharing.glsl).
 uint pendingBase = 0u;
 uint gBottom = 0u;
+// The pending ray read this round, at its one load site (main's loop, after shading, where a lane
+// that takes another's ray reads it too): on lavapipe every storage-buffer load site is a loop
+// over the lanes each round, whether a lane loads or not.
+uint gLoadIndex = 0u;
+bool gLoad = false;
 // This pixel's BVH traversal stack, in private memory while the kernel runs: on lavapipe that is
 // cheaper than a storage buffer, whose every access loops over the lanes. A pixel suspended in
 // the middle of a traversal keeps it in traversalStacks[stackBase .. stackBase + kTraversalStackSize).
@@ -67,6 +72,13 @@ const uint kPhaseShadow = 3u;       // any-hit traversal towards light st.contro
 const uint kPhaseScatter = 4u;      // spawn reflected / refracted rays
 const uint kPhaseNextRay = 5u;      // pop a pending ray, or finish the sample
 const uint kPhaseDone = 6u;
+
+// The pending ray at `index` goes on as st.ray: read at the round's end (main).
+void loadPendingRay(uint index) {
+    gLoadIndex = index;
+    gLoad = true;
+    st.control.x = kPhaseTrace;  // beginRay, once the ray is read, begins its traversal
+}
 
 #include "ray_sharing.glsl"
 
@@ -477,12 +489,7 @@ void nextRay() {
         return;
     }
     st.control.y -= 1u;
-    if (kRaySharing) {
-        loadPendingRay(pendingBase + st.control.y);
-        return;
-    }
-    st.ray = pendingRays[pendingBase + st.control.y];
-    beginRay();
+    loadPendingRay(pendingBase + st.control.y);
 }
 
 // The next sample's primary ray, or the end of the pixel.
@@ -576,15 +583,13 @@ void main() {
             gRoundColour = vec3(0.0);
         }
 #ifndef VITRUM_NO_SUBGROUP_OPERATIONS
-        if (kRaySharing) {
-            shareRays(hasPixel);
-            if (gLoad) {
-                st.ray = pendingRays[gLoadIndex];
-                beginRay();
-                gLoad = false;
-            }
-        }
+        if (kRaySharing) shareRays(hasPixel);
 #endif
+        if (kPendingRayCapacity > 0u && gLoad) {
+            st.ray = pendingRays[gLoadIndex];
+            beginRay();
+            gLoad = false;
+        }
         working = st.control.x != kPhaseDone;
         busy = working || gTaken;  // a lane done with a taken tree waits to hand it back
     } while (groupAny(busy) && steps < budget);
