@@ -36,13 +36,11 @@ void beginTraversal(vec3 origin, vec3 direction, float tMin, float tMax) {
 // off the stack at once; `over` when the stack is empty. The stack's top is read before the node,
 // so that the two reads overlap and the next node's read waits for neither.
 //
-// The far child is written to the free slot above the top in every visit, and the top raised
-// only when it is pushed. On lavapipe a lane's store to a private array is a branch a lane (store
-// the new value or the old one), and the branches of a store made only when both boxes are hit
-// follow each lane's boxes, which the CPU cannot predict; in every visit they follow only which
-// lanes are still in the loop (docs/gpu-design.md).
-void visitInteriorNode(inout uint current, inout uint top, inout bool over, vec3 direction, BoxRay ray, float tMin,
-                       float tMax) {
+// The far child is returned in `farEntry` for the caller to write to the free slot above the
+// top (as it was before the visit), and the top is raised only when it is pushed: the caller
+// stores it in every iteration of its loop, in every lane (traverse below says why).
+void visitInteriorNode(inout uint current, inout uint top, inout bool over, out uint farEntry, vec3 direction,
+                       BoxRay ray, float tMin, float tMax) {
     uint below = gStack[top == 0u ? 0u : top - 1u];
     TraversalNode node = loadTraversalNode(current);
     gNodeVisits += 2u;
@@ -54,8 +52,7 @@ void visitInteriorNode(inout uint current, inout uint top, inout bool over, vec3
     bool hitFar = negative ? hit0 : hit1;
     uint entry0 = floatBitsToUint(node.min0.w);
     uint entry1 = floatBitsToUint(node.min1.w);
-    uint farEntry = negative ? entry0 : entry1;
-    gStack[top] = farEntry;
+    farEntry = negative ? entry0 : entry1;
     current = hitNear ? (negative ? entry1 : entry0) : below;
     if (!hitFar) {
         if (!hitNear && top == 0u) over = true;
@@ -132,22 +129,36 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
                 current = gStack[top];
             }
         }
-        uint nodeSteps = 0u;
-        if (!over && cursor >= leafEnd && steps < budget) do {
+        // The node loop runs while some lane of the group needs a node (the same condition in
+        // every lane), and each iteration writes every lane's far child, or a 0 where the lane
+        // visits no node, to the free slot above its top. On lavapipe a lane's store to a private
+        // array at an index of its own is a branch a lane on the lanes' mask (store the new value
+        // or the old one): with the store in every lane the branches always go the same way,
+        // while a store made only by the lanes still in the loop follows which of them are, which
+        // the CPU cannot predict (docs/gpu-design.md). The iterations are the ones of a loop that
+        // every lane leaves for itself: as many as its longest lane's.
+        bool inNodes = !over && cursor >= leafEnd;
+        uint nodeSteps = 0u;  // the group's
+        if (groupAny(inNodes) && steps < budget) do {
             nodeSteps += 1u;
-            if ((current & kLeafEntryFlag) == 0u)
-                visitInteriorNode(current, top, over, direction, boxRay, tMin, tMax + reach);
-            if (over) break;
-            // A leaf, taken off the stack or just entered, is taken in the same iteration.
-            if ((current & kLeafEntryFlag) != 0u) {
-                cursor = (current & ~kLeafEntryFlag) >> 4;
-                leafEnd = cursor + (current & 15u);
-                current = kNoEntry;
-                break;
+            uint slot = min(top, kTraversalStackSize - 1u);  // the top before a push: a free slot
+            uint farEntry = 0u;
+            if (inNodes) {
+                gPixelSteps += 1u;
+                if ((current & kLeafEntryFlag) == 0u)
+                    visitInteriorNode(current, top, over, farEntry, direction, boxRay, tMin, tMax + reach);
+                // A leaf, taken off the stack or just entered, is taken in the same iteration.
+                if (!over && (current & kLeafEntryFlag) != 0u) {
+                    cursor = (current & ~kLeafEntryFlag) >> 4;
+                    leafEnd = cursor + (current & 15u);
+                    current = kNoEntry;
+                    inNodes = false;
+                }
+                if (over) inNodes = false;
             }
-        } while (cursor >= leafEnd && steps + nodeSteps < budget);
-        gPixelSteps += nodeSteps;
-        steps += max(groupMax(nodeSteps), 1u);  // a loop no lane enters runs its body once, masked
+            gStack[slot] = farEntry;
+        } while (groupAny(inNodes) && steps + nodeSteps < budget);
+        steps += max(nodeSteps, 1u);  // a loop no lane enters runs its body once, masked
         uint triangleSteps = 0u;
         if (!over && cursor < leafEnd && steps < budget) do {
             triangleSteps += 1u;
