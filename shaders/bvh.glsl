@@ -186,12 +186,12 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
         gPixelSteps += triangleSteps;
         steps += max(groupMax(triangleSteps), 1u);
     } while (groupAny(!over) && steps < budget);
+    // Suspended: the entry in hand goes back on the stack (pushes leave it a free slot). Stored
+    // in every lane, for the reason the node loop's store is (a lane that is not suspended
+    // writes its free slot, and one that does not trace has no stack to keep).
+    gStack[min(top, kTraversalStackSize - 1u)] = current;
     if (!tracing) return true;
-    // Suspended: the entry in hand goes back on the stack (pushes leave it a free slot).
-    if (!over && current != kNoEntry) {
-        gStack[top] = current;
-        top += 1u;
-    }
+    if (!over && current != kNoEntry) top += 1u;
     st.traceDirection.w = tMax;
     st.traversal.xyz = uvec3(cursor, leafEnd, closest);
     st.hitUv.zw = barycentrics;
