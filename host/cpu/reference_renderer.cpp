@@ -413,7 +413,7 @@ private:
     std::vector<std::uint32_t> mediumMaterials_;
     std::uint32_t maxDepth_;
     Real touchTolerance_;    // surfaces closer than this along a ray touch
-    bool touchingPossible_;  // glass objects whose boxes overlap: only then can surfaces touch
+    bool touchingPossible_;  // glass surfaces of two objects close enough to touch (scene_features.h)
     Real minWeight_;
     RayOffsetScale offsetScale_;  // Waechter and Binder's absolute offsets, scaled to the scene
     Vec3 cameraFrom_, cameraX_, cameraY_, cameraZ_;

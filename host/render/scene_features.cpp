@@ -1,5 +1,7 @@
 #include "render/scene_features.h"
 
+#include "render/glass_proximity.h"
+
 #include <algorithm>
 #include <cstring>
 #include <limits>
@@ -135,7 +137,9 @@ SceneFeatures analyseScene(const Scene& scene) {
             if (i != j && boxes[i].overlaps(boxes[j], margin)) ++overlaps;
         mostOverlaps = std::max(mostOverlaps, overlaps);
     }
-    f.touchingMediaPossible = mostOverlaps > 0;
+    // Overlapping boxes say that two objects may touch or one lie in the other; only the
+    // triangles tell which (a bubble in a block is nested, never touching).
+    f.touchingMediaPossible = mostOverlaps > 0 && findCloseGlassTriangles(scene, margin).found;
     f.openGlassObjects = countOpenGlassObjects(scene);
     f.mediumStackDepth = !f.glass ? 0
                          : f.openGlassObjects > 0 ? gpu::kMaxMediumDepth
@@ -165,7 +169,7 @@ std::vector<std::string> SceneFeatures::describe() const {
         std::string("glass (refraction, medium stack): ") + yesNo(glass) + ", " + std::to_string(glassObjects) +
             " objects" + (openGlassObjects ? ", " + std::to_string(openGlassObjects) + " of them open or badly wound" : ""),
         std::string("absorbing media (Beer-Lambert): ") + yesNo(absorbingMedia),
-        std::string("touching or nested media possible: ") + yesNo(touchingMediaPossible),
+        std::string("touching glass surfaces possible: ") + yesNo(touchingMediaPossible),
         "medium stack depth needed: " + std::to_string(mediumStackDepth),
         std::string("reflected rays: ") + yesNo(reflection),
         "pending-ray stack needed: " + std::to_string(rayStackDepth),

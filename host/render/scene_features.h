@@ -22,8 +22,9 @@ struct SceneFeatures {
     std::uint32_t materialModels = 0;    // bit (1 << model) for every MaterialModel a triangle uses
     bool glass = false;                  // refraction and a medium stack
     bool absorbingMedia = false;         // some glass has Tf != 0 (Beer-Lambert)
-    // Two glass objects whose bounding boxes, grown by the touching tolerance, overlap: only then
-    // can their surfaces touch or one lie inside the other. Otherwise no touching probe is needed.
+    // Two triangles of different glass objects that may lie within twice the touching distance
+    // of each other (render/glass_proximity.h): only then can a touching probe find anything, so
+    // otherwise neither backend probes. Nested objects apart from each other need no probe.
     bool touchingMediaPossible = false;
     bool reflection = false;             // opaque dielectrics, mirrors or glass spawn reflected rays
     bool shadowRays = false;             // lights and materials that use them (Lambert, Phong)

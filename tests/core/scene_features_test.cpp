@@ -6,6 +6,7 @@
 #include "render/trace_specialization.h"
 #include "scene/scene_loader.h"
 #include "shared/gpu_types.h"
+#include "glass_scenes.h"
 
 namespace vitrum {
 namespace {
@@ -45,44 +46,16 @@ TEST(SceneFeatures, TouchingAndNestedGlassNeedsTheProbeAndADeeperStack) {
     EXPECT_TRUE(touching.touchingMediaPossible);
     EXPECT_EQ(touching.mediumStackDepth, 2u);
     EXPECT_EQ(touching.usefulDepth, 10u);
-    SceneFeatures bubble = featuresOf("scenes/bubble.json");  // an air bubble inside a glass block
-    EXPECT_TRUE(bubble.touchingMediaPossible);
+    // An air bubble inside a glass block: nested (a stack of 2), but its surface is far from the
+    // block's, so no touching probe.
+    SceneFeatures bubble = featuresOf("scenes/bubble.json");
+    EXPECT_FALSE(bubble.touchingMediaPossible);
     EXPECT_EQ(bubble.mediumStackDepth, 2u);
     SceneFeatures green = featuresOf("scenes/plastics_green_glass.json");
     EXPECT_TRUE(green.absorbingMedia);  // Tf 0.4 0.001 0.4
     EXPECT_TRUE(featuresOf("scenes/demo.json").absorbingMedia);
     EXPECT_EQ(featuresOf("scenes/glass_sphere_cube.json").background, BackgroundKind::Cube);
     EXPECT_EQ(featuresOf("scenes/glass_sphere_spherical.json").background, BackgroundKind::Spherical);
-}
-
-// A closed, outward-wound glass box lo..hi as a new object.
-void addGlassBox(Scene& scene, glm::vec3 lo, glm::vec3 hi) {
-    const std::uint32_t object = std::uint32_t(scene.objectNames.size());
-    scene.objectNames.push_back("box " + std::to_string(object));
-    auto corner = [&](int i, int j, int k) { return glm::vec3(i ? hi.x : lo.x, j ? hi.y : lo.y, k ? hi.z : lo.z); };
-    const int faces[6][4][3] = {{{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}},
-                                {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},
-                                {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
-    for (const auto& f : faces) {
-        glm::vec3 q[4];
-        for (int v = 0; v < 4; ++v) q[v] = corner(f[v][0], f[v][1], f[v][2]);
-        for (const auto& [b, c] : {std::pair{1, 2}, std::pair{2, 3}}) {
-            Triangle t;
-            t.position[0] = q[0];
-            t.position[1] = q[b];
-            t.position[2] = q[c];
-            t.object = object;
-            scene.triangles.push_back(t);
-        }
-    }
-}
-
-Scene glassScene() {
-    Scene scene;
-    Material glass;
-    glass.model = MaterialModel::Glass;
-    scene.materials.push_back(glass);
-    return scene;
 }
 
 TEST(SceneFeatures, MediumStackDepthCountsOverlappingBoxes) {

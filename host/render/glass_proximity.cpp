@@ -1,0 +1,203 @@
+#include "render/glass_proximity.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <tuple>
+#include <vector>
+
+namespace vitrum {
+namespace {
+
+struct Bounds {
+    glm::dvec3 min{std::numeric_limits<double>::max()};
+    glm::dvec3 max{std::numeric_limits<double>::lowest()};
+
+    void grow(const glm::dvec3& p) {
+        min = glm::min(min, p);
+        max = glm::max(max, p);
+    }
+    // Whether the two boxes come within `margin` of each other on every axis.
+    bool within(const Bounds& o, double margin) const {
+        return glm::all(glm::lessThanEqual(min - margin, o.max)) && glm::all(glm::lessThanEqual(o.min - margin, max));
+    }
+};
+
+struct GlassTriangle {
+    glm::dvec3 corner[3];
+    Bounds bounds;
+    std::uint32_t object = 0;
+};
+
+// [lo, hi] of the three corners' projections on `axis`.
+void project(const glm::dvec3 p[3], const glm::dvec3& axis, double& lo, double& hi) {
+    const double d0 = glm::dot(p[0], axis), d1 = glm::dot(p[1], axis), d2 = glm::dot(p[2], axis);
+    lo = std::min({d0, d1, d2});
+    hi = std::max({d0, d1, d2});
+}
+
+// The glass triangles that lie within `distance` of another glass object's box: no other
+// triangle can be that close to them.
+std::vector<GlassTriangle> trianglesNearOtherObjects(const Scene& scene, double distance) {
+    std::vector<GlassTriangle> glass;
+    std::map<std::uint32_t, Bounds> objectBounds;
+    for (const Triangle& t : scene.triangles) {
+        if (scene.materials[t.material].model != MaterialModel::Glass) continue;
+        GlassTriangle g;
+        for (int i = 0; i < 3; ++i) {
+            g.corner[i] = glm::dvec3(t.position[i]);
+            g.bounds.grow(g.corner[i]);
+        }
+        g.object = t.object;
+        objectBounds[t.object].grow(g.bounds.min);
+        objectBounds[t.object].grow(g.bounds.max);
+        glass.push_back(g);
+    }
+    if (objectBounds.size() < 2) return {};
+    std::vector<GlassTriangle> near;
+    for (const GlassTriangle& g : glass) {
+        const bool nearOther = std::any_of(objectBounds.begin(), objectBounds.end(), [&](const auto& entry) {
+            return entry.first != g.object && g.bounds.within(entry.second, distance);
+        });
+        if (nearOther) near.push_back(g);
+    }
+    return near;
+}
+
+// A cell of the grid over the triangles, packed 21 bits an axis.
+using CellKey = std::uint64_t;
+constexpr double kCellsPerAxis = double(1 << 21) - 2;
+
+}  // namespace
+
+bool trianglesApart(const glm::dvec3 a[3], const glm::dvec3 b[3], double distance) {
+    const glm::dvec3 ea[3] = {a[1] - a[0], a[2] - a[1], a[0] - a[2]};
+    const glm::dvec3 eb[3] = {b[1] - b[0], b[2] - b[1], b[0] - b[2]};
+    // The direction between the two closest points is an axis along which the triangles are as
+    // far apart as they are, and those points are two corners, a corner and a point of an edge,
+    // a corner and a point inside the other's face, or points of two edges (where an edge lies
+    // parallel to a face, or two edges parallel to each other, a corner is among the closest
+    // points too). So the axes below are: the corner-to-corner directions, their parts across
+    // each edge of the other triangle, the two normals and the cross products of two edges.
+    glm::dvec3 axes[2 + 9 + 9 + 18];
+    int count = 0;
+    axes[count++] = glm::cross(ea[0], ea[1]);
+    axes[count++] = glm::cross(eb[0], eb[1]);
+    for (const glm::dvec3& u : ea)
+        for (const glm::dvec3& v : eb) axes[count++] = glm::cross(u, v);
+    auto across = [](const glm::dvec3& w, const glm::dvec3& edge) {
+        const double length2 = glm::dot(edge, edge);
+        return length2 > 0.0 ? w - edge * (glm::dot(w, edge) / length2) : w;
+    };
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            const glm::dvec3 w = b[j] - a[i];
+            axes[count++] = w;
+            axes[count++] = across(w, eb[j]);  // corner i of a to edge j of b
+            axes[count++] = across(w, ea[i]);  // corner j of b to edge i of a
+        }
+    for (const glm::dvec3& axis : axes) {
+        const double length = glm::length(axis);
+        if (!(length > 0.0) || !std::isfinite(length)) continue;  // parallel edges, a degenerate triangle
+        double aLo, aHi, bLo, bHi;
+        project(a, axis, aLo, aHi);
+        project(b, axis, bLo, bHi);
+        // Along the unit axis, every point of one is at least this far from every point of the other.
+        if (std::max(bLo - aHi, aLo - bHi) > distance * length) return true;
+    }
+    return false;
+}
+
+CloseGlassTriangles findCloseGlassTriangles(const Scene& scene, double distance, std::uint64_t maxPairs) {
+    CloseGlassTriangles result;
+    const std::vector<GlassTriangle> near = trianglesNearOtherObjects(scene, distance);
+    if (near.empty()) return result;
+
+    // A uniform grid with cells about twice as large as a typical triangle (twice the median of
+    // their largest box sides, at least 4 distances): each triangle, its box grown by the distance, goes
+    // into the cells it covers, and triangles of different objects in one cell are paired. A
+    // triangle that would cover more than kMaxCells cells (a large face beside a fine mesh) is
+    // paired with every other instead.
+    Bounds region;
+    std::vector<double> sizes;
+    for (const GlassTriangle& g : near) {
+        region.grow(g.bounds.min - distance);
+        region.grow(g.bounds.max + distance);
+        const glm::dvec3 side = g.bounds.max - g.bounds.min;
+        sizes.push_back(std::max({side.x, side.y, side.z}));
+    }
+    std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+    const glm::dvec3 extent = region.max - region.min;
+    const double cell =
+        std::max({2.0 * sizes[sizes.size() / 2], 4.0 * distance, std::max({extent.x, extent.y, extent.z}) / kCellsPerAxis});
+    constexpr std::uint64_t kMaxCells = 64;
+
+    struct Entry {
+        CellKey cell;
+        std::uint32_t object, triangle;
+        bool operator<(const Entry& o) const {
+            return std::tie(cell, object, triangle) < std::tie(o.cell, o.object, o.triangle);
+        }
+    };
+    auto key = [](const glm::uvec3& c) { return CellKey(c.x) << 42 | CellKey(c.y) << 21 | CellKey(c.z); };
+    std::vector<Entry> entries;
+    std::vector<CellKey> lowestCell(near.size());  // of the cells a triangle is in
+    std::vector<std::uint32_t> large;
+    for (std::uint32_t i = 0; i < near.size(); ++i) {
+        const glm::uvec3 lo(glm::floor((near[i].bounds.min - distance - region.min) / cell));
+        const glm::uvec3 hi(glm::floor((near[i].bounds.max + distance - region.min) / cell));
+        const glm::u64vec3 span = glm::u64vec3(hi - lo) + std::uint64_t(1);
+        lowestCell[i] = key(lo);
+        if (span.x * span.y * span.z > kMaxCells) {
+            large.push_back(i);
+            continue;
+        }
+        for (std::uint32_t x = lo.x; x <= hi.x; ++x)
+            for (std::uint32_t y = lo.y; y <= hi.y; ++y)
+                for (std::uint32_t z = lo.z; z <= hi.z; ++z) entries.push_back({key({x, y, z}), near[i].object, i});
+    }
+
+    // Whether the pair may touch (or the work's bound is reached): boxes within `distance` and
+    // no separating axis.
+    auto mayTouch = [&](const GlassTriangle& a, const GlassTriangle& b) {
+        if (++result.examinedPairs > maxPairs) return result.gaveUp = true;
+        return a.bounds.within(b.bounds, distance) && !trianglesApart(a.corner, b.corner, distance);
+    };
+    // Two triangles that share cells are paired in one of them: the one at the lowest corner of
+    // where their grown boxes overlap (on each axis the larger of their lowest cells).
+    auto pairedHere = [&](CellKey here, std::uint32_t i, std::uint32_t j) {
+        const CellKey mask = (CellKey(1) << 21) - 1;
+        CellKey corner = 0;
+        for (int shift : {42, 21, 0})
+            corner |= std::max(lowestCell[i] >> shift & mask, lowestCell[j] >> shift & mask) << shift;
+        return corner == here;
+    };
+    auto search = [&] {
+        for (std::uint32_t i : large)
+            for (std::uint32_t j = 0; j < near.size(); ++j)
+                if (near[i].object != near[j].object && mayTouch(near[i], near[j])) return true;
+        std::sort(entries.begin(), entries.end());
+        for (std::size_t first = 0; first < entries.size();) {
+            std::size_t end = first;
+            while (end < entries.size() && entries[end].cell == entries[first].cell) ++end;
+            // The cell's entries come by object: each object's with those of the objects after it.
+            for (std::size_t run = first; run < end;) {
+                std::size_t runEnd = run;
+                while (runEnd < end && entries[runEnd].object == entries[run].object) ++runEnd;
+                for (std::size_t i = run; i < runEnd; ++i)
+                    for (std::size_t j = runEnd; j < end; ++j)
+                        if (pairedHere(entries[i].cell, entries[i].triangle, entries[j].triangle) &&
+                            mayTouch(near[entries[i].triangle], near[entries[j].triangle]))
+                            return true;
+                run = runEnd;
+            }
+            first = end;
+        }
+        return false;
+    };
+    result.found = search();
+    return result;
+}
+
+}  // namespace vitrum

@@ -1,0 +1,38 @@
+// Whether surfaces of two glass objects come close enough to touch (docs/render-model-decisions.md,
+// "Touching objects"): only then does a render need the touching probe. Boxes around whole
+// objects cannot tell a bubble inside a block (nested, never touching) from two blocks face to
+// face; the triangles can.
+#pragma once
+
+#include <cstdint>
+
+#include "scene/scene.h"
+
+namespace vitrum {
+
+// What findCloseGlassTriangles found: a pair of triangles within the distance asked.
+struct CloseGlassTriangles {
+    bool found = false;
+    // The pairs of triangles looked at (sharing a cell of the search's grid), and whether the
+    // search stopped at kMaxExaminedPairs, which also counts as found.
+    std::uint64_t examinedPairs = 0;
+    bool gaveUp = false;
+};
+
+// Beyond this many pairs looked at, the answer is "may touch": a bound on the work for meshes
+// whose triangles crowd one another's boxes, never a wrong "apart".
+constexpr std::uint64_t kMaxExaminedPairs = 20'000'000;
+
+// Looks for two triangles of different glass objects of `scene` that lie within `distance` of
+// each other. Sound: when nothing is found, every two such triangles are farther apart than
+// `distance`. Complete up to rounding and to kMaxExaminedPairs: a pair farther apart is found
+// only when the search gives up.
+CloseGlassTriangles findCloseGlassTriangles(const Scene& scene, double distance,
+                                            std::uint64_t maxPairs = kMaxExaminedPairs);
+
+// Whether triangles a and b are farther apart than `distance`, by the separating-axis test:
+// some axis along which their projections leave a gap wider than `distance`, among axes that
+// include the direction between their closest points (so the test is exact up to rounding).
+bool trianglesApart(const glm::dvec3 a[3], const glm::dvec3 b[3], double distance);
+
+}  // namespace vitrum
