@@ -2,31 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <tuple>
 #include <vector>
 
+#include "render/double_box.h"
+
 namespace vitrum {
 namespace {
 
-struct Bounds {
-    glm::dvec3 min{std::numeric_limits<double>::max()};
-    glm::dvec3 max{std::numeric_limits<double>::lowest()};
-
-    void grow(const glm::dvec3& p) {
-        min = glm::min(min, p);
-        max = glm::max(max, p);
-    }
-    // Whether the two boxes come within `margin` of each other on every axis.
-    bool within(const Bounds& o, double margin) const {
-        return glm::all(glm::lessThanEqual(min - margin, o.max)) && glm::all(glm::lessThanEqual(o.min - margin, max));
-    }
-};
-
 struct GlassTriangle {
     glm::dvec3 corner[3];
-    Bounds bounds;
+    DoubleBox bounds;
     std::uint32_t object = 0;
 };
 
@@ -41,7 +28,7 @@ void project(const glm::dvec3 p[3], const glm::dvec3& axis, double& lo, double& 
 // triangle can be that close to them.
 std::vector<GlassTriangle> trianglesNearOtherObjects(const Scene& scene, double distance) {
     std::vector<GlassTriangle> glass;
-    std::map<std::uint32_t, Bounds> objectBounds;
+    std::map<std::uint32_t, DoubleBox> objectDoubleBox;
     for (const Triangle& t : scene.triangles) {
         if (scene.materials[t.material].model != MaterialModel::Glass) continue;
         GlassTriangle g;
@@ -50,14 +37,14 @@ std::vector<GlassTriangle> trianglesNearOtherObjects(const Scene& scene, double 
             g.bounds.grow(g.corner[i]);
         }
         g.object = t.object;
-        objectBounds[t.object].grow(g.bounds.min);
-        objectBounds[t.object].grow(g.bounds.max);
+        objectDoubleBox[t.object].grow(g.bounds.min);
+        objectDoubleBox[t.object].grow(g.bounds.max);
         glass.push_back(g);
     }
-    if (objectBounds.size() < 2) return {};
+    if (objectDoubleBox.size() < 2) return {};
     std::vector<GlassTriangle> near;
     for (const GlassTriangle& g : glass) {
-        const bool nearOther = std::any_of(objectBounds.begin(), objectBounds.end(), [&](const auto& entry) {
+        const bool nearOther = std::any_of(objectDoubleBox.begin(), objectDoubleBox.end(), [&](const auto& entry) {
             return entry.first != g.object && g.bounds.within(entry.second, distance);
         });
         if (nearOther) near.push_back(g);
@@ -119,7 +106,7 @@ CloseGlassTriangles findCloseGlassTriangles(const Scene& scene, double distance,
     // into the cells it covers, and triangles of different objects in one cell are paired. A
     // triangle that would cover more than kMaxCells cells (a large face beside a fine mesh) is
     // paired with every other instead.
-    Bounds region;
+    DoubleBox region;
     std::vector<double> sizes;
     for (const GlassTriangle& g : near) {
         region.grow(g.bounds.min - distance);

@@ -1,45 +1,31 @@
 #include "render/scene_features.h"
 
-#include "render/glass_proximity.h"
-
 #include <algorithm>
 #include <cstring>
-#include <limits>
 #include <map>
 #include <set>
 #include <unordered_map>
 
 #include <nlohmann/json.hpp>
 
+#include "render/double_box.h"
+#include "render/glass_proximity.h"
 #include "scene/scene_names.h"
 #include "shared/gpu_types.h"
 
 namespace vitrum {
 namespace {
 
-struct Box {
-    glm::dvec3 min{std::numeric_limits<double>::max()};
-    glm::dvec3 max{std::numeric_limits<double>::lowest()};
-
-    void grow(const glm::vec3& p) {
-        min = glm::min(min, glm::dvec3(p));
-        max = glm::max(max, glm::dvec3(p));
-    }
-    bool overlaps(const Box& o, double margin) const {
-        return glm::all(glm::lessThanEqual(min - margin, o.max)) && glm::all(glm::lessThanEqual(o.min - margin, max));
-    }
-};
-
 // Boxes of the objects that have glass triangles (all of each such object's triangles).
-std::vector<Box> glassObjectBoxes(const Scene& scene) {
+std::vector<DoubleBox> glassObjectBoxes(const Scene& scene) {
     std::set<std::uint32_t> glass;
     for (const Triangle& t : scene.triangles)
         if (scene.materials[t.material].model == MaterialModel::Glass) glass.insert(t.object);
-    std::map<std::uint32_t, Box> boxes;
+    std::map<std::uint32_t, DoubleBox> boxes;
     for (const Triangle& t : scene.triangles)
         if (glass.count(t.object))
-            for (const glm::vec3& p : t.position) boxes[t.object].grow(p);
-    std::vector<Box> result;
+            for (const glm::vec3& p : t.position) boxes[t.object].grow(glm::dvec3(p));
+    std::vector<DoubleBox> result;
     for (const auto& [object, box] : boxes) result.push_back(box);
     return result;
 }
@@ -97,9 +83,9 @@ std::uint32_t countOpenGlassObjects(const Scene& scene) {
 }  // namespace
 
 double sceneDiagonal(const std::vector<Triangle>& triangles) {
-    Box box;
+    DoubleBox box;
     for (const Triangle& t : triangles)
-        for (const glm::vec3& p : t.position) box.grow(p);
+        for (const glm::vec3& p : t.position) box.grow(glm::dvec3(p));
     return triangles.empty() ? 0.0 : glm::length(box.max - box.min);
 }
 
@@ -125,7 +111,7 @@ SceneFeatures analyseScene(const Scene& scene) {
         }
     }
 
-    const std::vector<Box> boxes = glassObjectBoxes(scene);
+    const std::vector<DoubleBox> boxes = glassObjectBoxes(scene);
     f.glassObjects = std::uint32_t(boxes.size());
     f.touchingDistance = kTouchingTolerance * sceneDiagonal(scene.triangles);
     // Boxes grown by twice the touching distance: a probe reaches that far on either side of a hit.
@@ -134,7 +120,7 @@ SceneFeatures analyseScene(const Scene& scene) {
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         std::uint32_t overlaps = 0;
         for (std::size_t j = 0; j < boxes.size(); ++j)
-            if (i != j && boxes[i].overlaps(boxes[j], margin)) ++overlaps;
+            if (i != j && boxes[i].within(boxes[j], margin)) ++overlaps;
         mostOverlaps = std::max(mostOverlaps, overlaps);
     }
     // Overlapping boxes say that two objects may touch or one lie in the other; only the
