@@ -28,7 +28,7 @@ void project(const glm::dvec3 p[3], const glm::dvec3& axis, double& lo, double& 
 // triangle can be that close to them.
 std::vector<GlassTriangle> trianglesNearOtherObjects(const Scene& scene, double distance) {
     std::vector<GlassTriangle> glass;
-    std::map<std::uint32_t, DoubleBox> objectDoubleBox;
+    std::map<std::uint32_t, DoubleBox> objectBoxes;
     for (const Triangle& t : scene.triangles) {
         if (scene.materials[t.material].model != MaterialModel::Glass) continue;
         GlassTriangle g;
@@ -37,17 +37,22 @@ std::vector<GlassTriangle> trianglesNearOtherObjects(const Scene& scene, double 
             g.bounds.grow(g.corner[i]);
         }
         g.object = t.object;
-        objectDoubleBox[t.object].grow(g.bounds.min);
-        objectDoubleBox[t.object].grow(g.bounds.max);
+        objectBoxes[t.object].grow(g.bounds.min);
+        objectBoxes[t.object].grow(g.bounds.max);
         glass.push_back(g);
     }
-    if (objectDoubleBox.size() < 2) return {};
+    // Each object's neighbours: the other objects whose boxes come within the distance of its own.
+    std::map<std::uint32_t, std::vector<DoubleBox>> neighbours;
+    for (const auto& [object, box] : objectBoxes)
+        for (const auto& [other, otherBox] : objectBoxes)
+            if (other != object && box.within(otherBox, distance)) neighbours[object].push_back(otherBox);
     std::vector<GlassTriangle> near;
     for (const GlassTriangle& g : glass) {
-        const bool nearOther = std::any_of(objectDoubleBox.begin(), objectDoubleBox.end(), [&](const auto& entry) {
-            return entry.first != g.object && g.bounds.within(entry.second, distance);
-        });
-        if (nearOther) near.push_back(g);
+        const auto found = neighbours.find(g.object);
+        if (found == neighbours.end()) continue;
+        if (std::any_of(found->second.begin(), found->second.end(),
+                        [&](const DoubleBox& box) { return g.bounds.within(box, distance); }))
+            near.push_back(g);
     }
     return near;
 }
