@@ -73,6 +73,31 @@ const uint kPhaseScatter = 4u;      // spawn reflected / refracted rays
 const uint kPhaseNextRay = 5u;      // pop a pending ray, or finish the sample
 const uint kPhaseDone = 6u;
 
+// A pending ray in the buffer. On lavapipe each member moved is a loop over the 8 lanes, with a
+// branch on each lane's mask: with a medium stack of one, the ray's one medium travels in its
+// weight's unused .w (a child's weight.w is 0, and media beyond the first are 0), so that three
+// members are moved instead of four.
+void storePendingRay(uint index, PendingRay r) {
+    if (kMediumStackDepth > 1u) {
+        pendingRays[index] = r;
+        return;
+    }
+    pendingRays[index].origin = r.origin;
+    pendingRays[index].direction = r.direction;
+    pendingRays[index].weight = vec4(r.weight.xyz, uintBitsToFloat(r.media.x));
+}
+
+PendingRay readPendingRay(uint index) {
+    if (kMediumStackDepth > 1u) return pendingRays[index];
+    PendingRay r;
+    r.origin = pendingRays[index].origin;
+    r.direction = pendingRays[index].direction;
+    vec4 weight = pendingRays[index].weight;
+    r.weight = vec4(weight.xyz, 0.0);
+    r.media = uvec4(floatBitsToUint(weight.w), 0u, 0u, 0u);
+    return r;
+}
+
 // The pending ray at `index` goes on as st.ray: read at the round's end (main).
 void loadPendingRay(uint index) {
     gLoadIndex = index;
@@ -463,7 +488,7 @@ void scatter(GpuMaterial m) {
         if (st.control.y >= kPendingRayCapacity) {
             gRayStackOverflows += 1u;  // the refraction is dropped, never silently
         } else {
-            pendingRays[pendingBase + st.control.y] = children.waiting;
+            storePendingRay(pendingBase + st.control.y, children.waiting);
             st.control.y += 1u;
             gRefractionRays += 1u;
         }
@@ -586,7 +611,7 @@ void main() {
         if (kRaySharing) shareRays(hasPixel);
 #endif
         if (kPendingRayCapacity > 0u && gLoad) {
-            st.ray = pendingRays[gLoadIndex];
+            st.ray = readPendingRay(gLoadIndex);
             beginRay();
             gLoad = false;
         }
