@@ -8,6 +8,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "bvh/bvh.h"
 #include "cpu/reference_renderer.h"
@@ -15,12 +16,22 @@
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
 #include "image/image_diff.h"
+#include "render/render_stats.h"
 #include "scene/scene_loader.h"
 
 namespace vitrum::testing {
 
 inline std::string sourcePath(const std::string& relative) { return std::string(VITRUM_SOURCE_DIR) + "/" + relative; }
 inline std::string sharedPath(const std::string& relative) { return std::string(VITRUM_SHARED_DIR) + "/" + relative; }
+
+// A render's statistics as `--stats` writes them, without the phases' seconds (which change from
+// run to run) and without the keys in `without`: what two renders of the same work must agree on.
+inline nlohmann::json countersWithoutTimes(const RenderStats& stats, std::initializer_list<const char*> without = {}) {
+    nlohmann::json json = toJson(stats);
+    json.erase("seconds");
+    for (const char* key : without) json.erase(key);
+    return json;
+}
 
 inline VulkanDevice& testDevice() {
     static VulkanDevice device("");
