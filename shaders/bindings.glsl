@@ -18,7 +18,7 @@ layout(set = 0, binding = 4, rgba32ui) uniform readonly uimageBuffer materialTex
 layout(set = 0, binding = 5, rgba32ui) uniform readonly uimageBuffer lightTexels;
 layout(std430, set = 0, binding = 6) readonly buffer Textures { TextureInfo textures[]; };
 layout(std430, set = 0, binding = 7) readonly buffer Texels { float texels[]; };  // RGB, packed
-layout(set = 0, binding = 8, rgba32ui) uniform readonly uimageBuffer objectMaterialTexels;
+layout(set = 0, binding = 8, rgba32ui) uniform readonly uimageBuffer objectMediumTexels;
 layout(std430, set = 0, binding = 9) writeonly buffer Pixels { vec4 pixels[]; };
 layout(std430, set = 0, binding = 10) buffer States { uvec4 stateTexels[]; };  // TraceStates, see suspend.glsl
 layout(std430, set = 0, binding = 11) buffer Stats { uint stats[]; };
@@ -90,9 +90,9 @@ GpuLight loadLight(uint i) {
     return GpuLight(fetchVec4(lightTexels, first, 0u), fetchVec4(lightTexels, first, 1u));
 }
 
-// The material whose medium closed object `object` encloses.
-uint objectMaterial(uint object) {
-    return imageLoad(objectMaterialTexels, int(object / kObjectMaterialsPerTexel))[object % kObjectMaterialsPerTexel];
-}
+// The medium closed object `object` encloses: its material's Beer-Lambert attenuation (.xyz) and
+// index of refraction (.w), GpuMaterial's `attenuation`. One texel, so that a medium's IOR is one
+// read in a shading round, not the object's material and then the material's texel.
+vec4 objectMedium(uint object) { return fetchVec4(objectMediumTexels, object, 0u); }
 
 #endif

@@ -188,8 +188,10 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     } while (groupAny(!over) && steps < budget);
     // Suspended: the entry in hand goes back on the stack (pushes leave it a free slot). Stored
     // in every lane, for the reason the node loop's store is (a lane that is not suspended
-    // writes its free slot, and one that does not trace has no stack to keep).
-    gStack[min(top, kTraversalStackSize - 1u)] = current;
+    // writes its free slot, and one that does not trace has no stack to keep). Only the
+    // resumable kernel resumes a traversal: the first dispatch gives up a pixel whose budget ran
+    // out, and its stack with it (trace.comp), so there the store would run every round for nothing.
+    if (kResumable) gStack[min(top, kTraversalStackSize - 1u)] = current;
     if (!tracing) return true;
     if (!over && current != kNoEntry) top += 1u;
     st.traceDirection.w = tMax;

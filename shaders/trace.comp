@@ -129,7 +129,7 @@ uint materialModel(GpuMaterial m) { return floatBitsToUint(m.ambient.w); }
 // IOR of the medium inside the innermost of `count` objects in `media`, or of the scene's air.
 float ior(uvec4 media, uint count) {
     if (!usesMaterial(kMaterialGlass) || count == 0u) return params.background.w;
-    return loadMaterial(objectMaterial(media[count - 1u])).attenuation.w;
+    return objectMedium(media[count - 1u]).w;
 }
 
 // IOR of the medium a ray is in.
@@ -138,7 +138,7 @@ float mediumIor(PendingRay r) { return ior(r.media, mediaCount(r)); }
 vec3 mediumAttenuation(PendingRay r) {
     if (!kAbsorption) return vec3(0.0);
     uint count = mediaCount(r);
-    return count == 0u ? vec3(0.0) : loadMaterial(objectMaterial(r.media[count - 1u])).attenuation.xyz;
+    return count == 0u ? vec3(0.0) : objectMedium(r.media[count - 1u]).xyz;
 }
 
 // A closest-hit traversal of st.ray, with no touching candidates yet (touching.glsl).
@@ -199,8 +199,9 @@ void startPrimaryRay() {
     beginClosestTraversal();
 }
 
-// The closest-hit traversal of st.ray is over: record the hit or take the background.
-void finishTrace() {
+// The closest-hit traversal of st.ray is over: record the hit (triangle `tri`, material `m`, both
+// read by main) or take the background.
+void finishTrace(TriangleVertices tri, GpuMaterial m) {
     uint triangle = st.traversal.z;
     // Beer-Lambert over the segment just travelled (render model: "Media: the IOR stack").
     vec3 mu = mediumAttenuation(st.ray);
@@ -218,7 +219,6 @@ void finishTrace() {
     float t = st.traceDirection.w;
     if (kAbsorption) st.ray.weight.xyz *= beerLambert(mu, t);  // exp(-0 t) is 1 only for finite t: not folded
 
-    TriangleVertices tri = loadTriangle(triangle);
     mat3 normals = loadVertexNormals(triangle);
     vec2 bary = st.hitUv.zw;
     float w0 = 1.0 - bary.x - bary.y;
@@ -245,7 +245,7 @@ void finishTrace() {
         st.hitUv.xy = w0 * uv0 + bary.x * uv1 + bary.y * uv2;
     }
 
-    uint model = materialModel(loadMaterial(hitMaterial()));
+    uint model = materialModel(m);
     if (usesMaterial(kMaterialGlass) && model == kMaterialGlass) {
         // Touching objects (lecture, "Problematic Cases"): the other glass surfaces within the
         // touching distance of this hit along the ray, which the traversal collected.
@@ -351,35 +351,6 @@ PendingRay childRay(vec3 origin, vec3 direction, vec3 weight, uvec4 media, uint 
     return r;
 }
 
-// The children of a hit: the one traced next (`next`) and the one that waits in the pending-ray
-// stack (`waiting`, a refraction whose reflection goes first).
-struct Children {
-    PendingRay next, waiting;
-    bool hasNext, hasWaiting;
-};
-
-// Opaque dielectric (Phong + Schlick-weighted, untinted reflection) and mirror: the reflection.
-void scatterOpaque(GpuMaterial m, inout Children children) {
-    vec3 d = st.ray.direction.xyz;
-    vec3 n = st.hitNormal.xyz;
-    vec3 origin = offsetRayOrigin(st.hitPosition.xyz, st.hitGeometricNormal.xyz);
-    vec3 weight;
-    if (usesMaterial(kMaterialMirror) && materialModel(m) == kMaterialMirror) {
-        weight = st.ray.weight.xyz * m.specular.xyz;
-    } else {
-        float n1 = mediumIor(st.ray);
-        float n2 = m.attenuation.w;
-        float cosI = -dot(d, n);
-        float eta = n1 / n2;
-        float r = fresnelReflectance(kFresnelSchlick, n1, n2, cosI, 1.0 - eta * eta * (1.0 - cosI * cosI));
-        weight = st.ray.weight.xyz * r;
-    }
-    uint depth = rayDepth(st.ray) + 1u;
-    children.hasNext = admitChild(depth, weight);
-    children.next = childRay(origin, reflectDirection(d, n), weight, st.ray.media, mediaCount(st.ray), depth);
-    if (children.hasNext) gReflectionRays += 1u;
-}
-
 // The medium stack, written without loops: every loop iteration counts against lavapipe's limit.
 // Removes the innermost entry of `object` (normally the top); a ray leaving an object it is not
 // inside (an open or badly wound mesh) keeps its stack, and that is counted.
@@ -412,12 +383,9 @@ void enterMedium(inout uvec4 media, inout uint count, uint object) {
 // wound mesh; the medium stack says what is on the other side. Surfaces of other glass objects
 // touching the hit (st.touching) make one interface with it: the ray leaves, then enters, so
 // glass touching glass is glass -> glass (lecture: P2 is 1.5 -> 1.5, never 1.5 -> 1 -> 1.5).
-void scatterGlass(GpuMaterial m, inout Children children) {
-    vec3 d = st.ray.direction.xyz;
-    vec3 ng = st.hitGeometricNormal.xyz;
-    bool entering = dot(d, ng) < 0.0;
-    uvec4 media = st.ray.media;
-    uint count = mediaCount(st.ray);
+// Returns whether the ray enters the hit object; `media` and `count` become the stack beyond.
+bool crossGlass(inout uvec4 media, inout uint count) {
+    bool entering = dot(st.ray.direction.xyz, st.hitGeometricNormal.xyz) < 0.0;
     uint touchingCount = kTouchingProbe ? st.touching.w : 0u;
     if (touchingCount > 0u) gTouchingInterfaces += 1u;
     // Leaving first ...
@@ -431,37 +399,7 @@ void scatterGlass(GpuMaterial m, inout Children children) {
     if (touchingCount > 1u && (st.touching.y & 0x80000000u) != 0u) enterMedium(media, count, st.touching.y & 0x7FFFFFFFu);
     if (touchingCount > 2u && (st.touching.z & 0x80000000u) != 0u) enterMedium(media, count, st.touching.z & 0x7FFFFFFFu);
     gMaxMediumDepth = max(gMaxMediumDepth, count);
-
-    float n1 = entering ? mediumIor(st.ray) : m.attenuation.w;
-    float n2 = entering && touchingCount == 0u ? m.attenuation.w : ior(media, count);
-    vec3 facing = entering ? ng : -ng;
-    vec3 n = entering ? st.hitNormal.xyz : -st.hitNormal.xyz;
-    if (dot(n, d) >= 0.0) n = facing;  // a shading normal on the wrong side: use the true one
-    vec3 p = st.hitPosition.xyz;
-    // The transmitted ray starts beyond every surface of the interface.
-    vec3 through = touchingCount == 0u ? p : st.ray.origin.xyz + st.probe.x * d;
-    uint depth = rayDepth(st.ray);
-    if (n1 == n2) {
-        // Index-matched: no optical interface; the same ray goes on with the new stack.
-        children.hasNext = admitChild(depth, st.ray.weight.xyz);
-        children.next = childRay(offsetRayOrigin(through, -facing), d, st.ray.weight.xyz, media, count, depth);
-        return;
-    }
-    float eta = n1 / n2;
-    float cosI = -dot(d, n);
-    float cos2t = cosSquaredTransmitted(d, n, eta);
-    float r = fresnelReflectance(fresnelModel(), n1, n2, cosI, cos2t);
-    if (cos2t < 0.0) gTotalInternalReflections += 1u;
-    vec3 w = st.ray.weight.xyz;
-    // Each child passes the depth and weight limits (or is counted); the refraction waits while
-    // the reflection is traced.
-    children.hasWaiting = cos2t >= 0.0 && admitChild(depth + 1u, w * (1.0 - r));
-    children.waiting = childRay(offsetRayOrigin(through, -facing), refractDirection(d, n, eta, cos2t), w * (1.0 - r),
-                                media, count, depth + 1u);
-    children.hasNext = admitChild(depth + 1u, w * r);
-    children.next = childRay(offsetRayOrigin(p, facing), reflectDirection(d, n), w * r, st.ray.media, mediaCount(st.ray),
-                             depth + 1u);
-    if (children.hasNext) gReflectionRays += 1u;
+    return entering;
 }
 
 // Whether any material of this build spawns reflected or refracted rays.
@@ -474,27 +412,65 @@ void beginRay() {
     beginClosestTraversal();
 }
 
-// The hit's children: the one traced next goes on at once as st.ray, and only a refraction whose
-// reflection goes first waits in the pending-ray stack. So the kernel has one place that stores a
-// pending ray: on lavapipe each store costs a loop over the lanes every round, whether a lane
+// The hit's children. The one traced next goes on at once as st.ray: the reflection (of a
+// mirror, a Phong surface with Schlick's weight, or glass), or through an index-matched glass
+// interface the same ray with the new medium stack. Only a glass hit's refraction, whose
+// reflection goes first, waits in the pending-ray stack. So the kernel has one place that stores
+// a pending ray: on lavapipe each store costs a loop over the lanes every round, whether a lane
 // stores or not. The order is the one of pushing both and popping the reflection at once.
+//
+// lavapipe runs the code of every material in every round, masked, so the materials share one
+// reflection: its IOR lookup, Fresnel term, direction and origin are worked out once, from the
+// normals on the incoming ray's side (an opaque hit's were turned so by finishTrace).
 void scatter(GpuMaterial m) {
-    Children children;
-    children.hasNext = false;
-    children.hasWaiting = false;
-    if (usesMaterial(kMaterialGlass) && materialModel(m) == kMaterialGlass) scatterGlass(m, children);
-    else scatterOpaque(m, children);
-    if (usesMaterial(kMaterialGlass) && children.hasWaiting) {
+    uint model = materialModel(m);
+    bool glass = usesMaterial(kMaterialGlass) && model == kMaterialGlass;
+    bool mirror = usesMaterial(kMaterialMirror) && model == kMaterialMirror;
+    vec3 d = st.ray.direction.xyz;
+    vec3 w = st.ray.weight.xyz;
+    uint depth = rayDepth(st.ray);
+    vec3 p = st.hitPosition.xyz;
+    vec3 facing = st.hitGeometricNormal.xyz;
+    vec3 n = st.hitNormal.xyz;
+    float n1 = mediumIor(st.ray);
+    float n2 = m.attenuation.w;
+    uvec4 media = st.ray.media;
+    uint count = mediaCount(st.ray);
+    vec3 through = p;  // where a transmitted ray starts: beyond every surface of the interface
+    if (usesMaterial(kMaterialGlass) && glass) {
+        bool entering = crossGlass(media, count);
+        if (!entering) n1 = m.attenuation.w;
+        if (!entering || (kTouchingProbe && st.touching.w > 0u)) n2 = ior(media, count);
+        if (!entering) facing = -facing;
+        if (!entering) n = -n;
+        if (dot(n, d) >= 0.0) n = facing;  // a shading normal on the wrong side: use the true one
+        if (kTouchingProbe && st.touching.w > 0u) through = st.ray.origin.xyz + st.probe.x * d;
+    }
+    // Index-matched glass: no optical interface; the same ray goes on with the new stack.
+    bool matched = glass && n1 == n2;
+    float eta = n1 / n2;
+    float cosI = -dot(d, n);
+    float cos2t = cosSquaredTransmitted(d, n, eta);
+    float r = fresnelReflectance(glass ? fresnelModel() : kFresnelSchlick, n1, n2, cosI, cos2t);
+    if (glass && !matched && cos2t < 0.0) gTotalInternalReflections += 1u;
+    vec3 transmittedOrigin = offsetRayOrigin(through, -facing);
+    // Each child passes the depth and weight limits (or is counted).
+    if (usesMaterial(kMaterialGlass) && glass && !matched && cos2t >= 0.0 && admitChild(depth + 1u, w * (1.0 - r))) {
         if (st.control.y >= kPendingRayCapacity) {
             gRayStackOverflows += 1u;  // the refraction is dropped, never silently
         } else {
-            storePendingRay(pendingBase + st.control.y, children.waiting);
+            storePendingRay(pendingBase + st.control.y, childRay(transmittedOrigin, refractDirection(d, n, eta, cos2t),
+                                                                 w * (1.0 - r), media, count, depth + 1u));
             st.control.y += 1u;
             gRefractionRays += 1u;
         }
     }
-    if (children.hasNext) {
-        st.ray = children.next;
+    PendingRay next = matched ? childRay(transmittedOrigin, d, w, media, count, depth)
+                              : childRay(offsetRayOrigin(p, facing), reflectDirection(d, n), mirror ? w * m.specular.xyz : w * r,
+                                         st.ray.media, mediaCount(st.ray), depth + 1u);
+    if (admitChild(rayDepth(next), next.weight.xyz)) {
+        if (!matched) gReflectionRays += 1u;
+        st.ray = next;
         beginRay();
     } else {
         st.control.x = kPhaseNextRay;
@@ -594,16 +570,29 @@ void main() {
         bool traced = traverse(kShadowRays && phase == kPhaseShadow ? kTraverseAny : kTraverseClosest,
                                phase == kPhaseTrace || phase == kPhaseShadow, steps, budget);
         if (traced && working) {
+            // The hit's triangle and material, each read once a round (only lanes at a hit use
+            // them): a closest hit's, or the one whose shadow ray just ended or whose lights or
+            // scattering go on from an earlier round.
+            TriangleVertices tri = TriangleVertices(vec4(0.0), vec4(0.0), vec4(0.0));
+            bool atEarlierHit = phase == kPhaseShadow || phase == kPhaseNextLight || phase == kPhaseScatter;
+            uint material = atEarlierHit ? hitMaterial() : 0u;
+            if (phase == kPhaseTrace && st.traversal.z != kNoTriangle) {
+                tri = loadTriangle(st.traversal.z);
+                material = floatBitsToUint(tri.v0.w);
+            }
+            GpuMaterial m = loadMaterial(material);
             if (phase == kPhaseShadow) finishShadow();
-            else if (phase == kPhaseTrace) finishTrace();
-            // The hit's material, read once for the phases that follow (only lanes at a hit use it).
-            uint shadingPhase = st.control.x;
-            GpuMaterial m =
-                loadMaterial(shadingPhase == kPhaseNextLight || shadingPhase == kPhaseScatter ? hitMaterial() : 0u);
-            if (shadingPhase == kPhaseNextLight) nextLight(m);  // may begin a shadow traversal
+            else if (phase == kPhaseTrace) finishTrace(tri, m);
+            if (st.control.x == kPhaseNextLight) nextLight(m);  // may begin a shadow traversal
             if (spawnsRays() && st.control.x == kPhaseScatter) scatter(m);
             if (st.control.x == kPhaseNextRay) nextRay();  // begins a traversal or ends the sample
-            if (st.control.x == kPhaseStartSample) startSample();
+            // A sample has ended here: with one sample a pixel (kSingleSample) that was the
+            // pixel's only one, and the round needs no camera code (main starts the first sample
+            // before the loop): the code of every phase runs in every round on lavapipe.
+            if (st.control.x == kPhaseStartSample) {
+                if (kSingleSample) st.control.x = kPhaseDone;
+                else startSample();
+            }
             addColour(st.colourLow, st.colourHigh, gRoundColour);
             gRoundColour = vec3(0.0);
         }

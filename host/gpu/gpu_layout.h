@@ -18,7 +18,6 @@ static_assert(sizeof(TriangleVertices) == 16 * kTriangleVerticesTexels);
 static_assert(sizeof(TriangleShading) == 16 * kTriangleShadingTexels);
 static_assert(sizeof(GpuMaterial) == 16 * kGpuMaterialTexels);
 static_assert(sizeof(GpuLight) == 16 * kGpuLightTexels);
-static_assert(kObjectMaterialsPerTexel * sizeof(std::uint32_t) == 16);
 }  // namespace vitrum::gpu
 
 namespace vitrum::gpu {

@@ -38,7 +38,7 @@ ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecial
     std::array<VkDescriptorType, kTraceBindingCount> bindings;
     bindings.fill(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     for (TraceBinding texels : {kBindingParams, kBindingNodes, kBindingVertices, kBindingShading, kBindingMaterials, kBindingLights,
-                                kBindingObjectMaterials})
+                                kBindingObjectMedia})
         bindings[texels] = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
     const auto sceneConstants = specialization.constants();
     // Then kResumable (constant_id 11) and kFullSubgroups (12).

@@ -19,7 +19,7 @@ enum TraceBinding : std::uint32_t {
     kBindingLights,
     kBindingTextures,
     kBindingTexels,
-    kBindingObjectMaterials,
+    kBindingObjectMedia,
     kBindingPixels,
     kBindingStates,
     kBindingStats,

@@ -50,12 +50,11 @@ void addCounters(RenderStats& stats, const std::uint32_t* counters) {
     stats.groupLoopSteps += counters[gpu::kStatGroupSteps];
 }
 
-// kObjectMaterialsPerTexel uints a texel, zero-padded: the layout bindings.glsl's objectMaterial() reads.
-std::vector<glm::uvec4> objectMaterialTexels(const std::vector<std::uint32_t>& values) {
-    std::vector<glm::uvec4> texels((values.size() + gpu::kObjectMaterialsPerTexel - 1) / gpu::kObjectMaterialsPerTexel,
-                                   glm::uvec4(0u));
-    for (std::size_t i = 0; i < values.size(); ++i)
-        texels[i / gpu::kObjectMaterialsPerTexel][i % gpu::kObjectMaterialsPerTexel] = values[i];
+// One texel an object: its medium's material's `attenuation` (Tf, Ni), which bindings.glsl's
+// objectMedium() reads.
+std::vector<glm::vec4> objectMediumTexels(const PackedScene& packed) {
+    std::vector<glm::vec4> texels;
+    for (std::uint32_t material : packed.objectMaterials) texels.push_back(packed.materials[material].attenuation);
     return texels;
 }
 
@@ -94,8 +93,8 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     GpuBuffer lights = makeTexelBuffer(device, spanOf(packed.lights), "lights");
     GpuBuffer textures = makeStorageBuffer(device, spanOf(packed.textures), "texture table");
     GpuBuffer texels = makeStorageBuffer(device, spanOf(packed.texels), "texture texels");
-    const std::vector<glm::uvec4> mediaTexels = objectMaterialTexels(packed.objectMaterials);
-    GpuBuffer objectMaterials = makeTexelBuffer(device, spanOf(mediaTexels), "object media");
+    const std::vector<glm::vec4> mediumTexels = objectMediumTexels(packed);
+    GpuBuffer objectMedia = makeTexelBuffer(device, spanOf(mediumTexels), "object media");
     GpuBuffer pixels(device, std::max<VkDeviceSize>(VkDeviceSize(width) * height * sizeof(glm::vec4), 16),
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "image");
     const VkDeviceSize tilePixels = VkDeviceSize(tileWidth) * tileHeight;
@@ -114,7 +113,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     start = Clock::now();
     const std::array<const GpuBuffer*, kTraceBindingCount> bound{
         &params, &nodes, &vertices, &shading, &materials, &lights, &textures,
-        &texels, &objectMaterials, &pixels, &states, &counters, &pendingRays, &traversalStacks};
+        &texels, &objectMedia, &pixels, &states, &counters, &pendingRays, &traversalStacks};
     const StatisticsSums sums = statisticsSumsFor(device, options.statisticsSums);
     // The build without subgroup operations counts each lane's steps as a group's.
     stats.lanesPerGroup = sums == StatisticsSums::atomics ? 1u : device.subgroups().size;

@@ -118,7 +118,7 @@ VITRUM_CONST uint kFresnelSchlickExp2 = 2u;
 // ---- Texel buffers -------------------------------------------------------------------------------
 // The scene's read-only data are bound as storage texel buffers of 16-byte uvec4 texels
 // (shaders/bindings.glsl): a struct is this many consecutive texels (gpu_layout.h checks them
-// against the struct sizes). Object media are four uints a texel.
+// against the struct sizes). An object's medium is one texel: its material's `attenuation` (Tf, Ni).
 VITRUM_CONST uint kTraversalNodeTexels = 4u;
 VITRUM_CONST uint kRenderParamsTexels = 13u;
 VITRUM_CONST uint kTraceStateTexels = 16u;  // a storage buffer of uvec4s (shaders/suspend.glsl)
@@ -126,7 +126,6 @@ VITRUM_CONST uint kTriangleVerticesTexels = 3u;
 VITRUM_CONST uint kTriangleShadingTexels = 5u;
 VITRUM_CONST uint kGpuMaterialTexels = 4u;
 VITRUM_CONST uint kGpuLightTexels = 2u;
-VITRUM_CONST uint kObjectMaterialsPerTexel = 4u;
 
 // ---- Per-render parameters (a texel buffer of kRenderParamsTexels, see bindings.glsl) -----------
 // The pinhole camera of docs/render-model.md: a sample at image position (sx, sy) has direction
