@@ -25,6 +25,10 @@ layout(constant_id = 11) const bool kResumable = true;
 // Not a scene feature but the device's guarantee: every subgroup is full, since the pipeline was
 // created with VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT (statistics.glsl).
 layout(constant_id = 12) const bool kFullSubgroups = false;
+// Not a scene feature but the device's threads: on a device that runs on the CPU, the first
+// dispatch's subgroups take units of work until none is left, so that the CPU's threads share
+// the work however fast each runs (trace.comp's main). Only with kFullSubgroups.
+layout(constant_id = 13) const bool kPersistentSubgroups = false;
 
 bool usesMaterial(uint model) { return ((kMaterialModels >> model) & 1u) != 0u; }
 

@@ -28,6 +28,14 @@ struct StatisticSums {
 
 const StatisticSums kNoStatistics = StatisticSums(uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u));
 
+void addSums(inout StatisticSums total, StatisticSums sums) {
+    total.v0 += sums.v0;
+    total.v1 += sums.v1;
+    total.v2 += sums.v2;
+    total.v3 += sums.v3;
+    total.v4 += sums.v4;
+}
+
 uint statisticAt(StatisticSums s, uint index) {
     uvec4 v = index < 4u ? s.v0 : (index < 8u ? s.v1 : (index < 12u ? s.v2 : (index < 16u ? s.v3 : s.v4)));
     return v[index & 3u];

@@ -3,12 +3,14 @@
 //
 // lavapipe silently ends a shader's loops after 65,535 iterations of a SIMD group. So every loop
 // iteration of this kernel is one small counted step (one BVH node, one leaf, one triangle, or one
-// round of shading, see main), counted for the group (bvh.glsl's traverse). A dispatch runs at
-// most `params.counts.w` steps per group. The first dispatch of a tile gives up the pixels that
-// are not done by then; the resumable build of this kernel (kResumable) restarts them and keeps
-// their state between its dispatches (suspend.glsl), and the host dispatches it until every pixel
-// of the tile is done. Nothing recurses. In the first dispatch, where subgroups are full, a lane
-// whose pixel is done takes pending rays of the other lanes of its group (ray_sharing.glsl).
+// round of shading, see main), counted for the group (bvh.glsl's traverse). A dispatch runs at most
+// `params.counts.w` steps per group and unit of pixels. The first dispatch of a tile gives up the
+// pixels that are not done by then; the resumable build of this kernel (kResumable) restarts them
+// and keeps their state between its dispatches (suspend.glsl), and the host dispatches it until
+// every pixel of the tile is done. Nothing recurses. In the first dispatch, where subgroups are
+// full, a lane whose pixel is done takes pending rays of the other lanes of its group
+// (ray_sharing.glsl), and on a device that runs on the CPU a subgroup goes on to the tile's next
+// unit of pixels when its own are done (main).
 #extension GL_GOOGLE_include_directive : require
 // The default build uses subgroup operations: to count the SIMD group's loop iterations
 // (lanes.glsl) and to sum its statistics over each subgroup before adding them up atomically
@@ -151,27 +153,55 @@ void beginClosestTraversal() {
     st.control.x = kPhaseTrace;
 }
 
-// This invocation's pixel, relative to the tile. A workgroup's worth of pixels is an 8x8 block,
-// walked in Morton order, so that the 8 lanes of a lavapipe SIMD group cover 4x2 pixels rather
-// than a row of 8: nearer pixels send nearer rays, which visit more of the same BVH nodes, and
-// the group's loops run fewer iterations (docs/gpu-design.md).
+// The work of a dispatch comes in units: where subgroups are full, a unit is a subgroup's share
+// of an 8x8 block of the tile's part inside the image; elsewhere a workgroup traces its own block
+// and there is one unit, its own.
 //
-// Which block: lavapipe splits a dispatch's workgroups, in order, into one run of consecutive
+// Which unit: lavapipe splits a dispatch's workgroups, in order, into one run of consecutive
 // workgroups a thread (Mesa's lp_cs_tpool), so a thread whose run covers the glass works on while
-// the other waits. Where subgroups are full, each subgroup instead takes the dispatch's next
-// unit, a subgroup's share of a block, from a counter as it starts: the threads take turns
-// through the tile, each near the other, and a unit is the same pixels whichever thread takes it
-// (so are the images and statistics). Elsewhere a workgroup traces its own block.
-uvec2 tilePixel() {
-    uvec2 block = gl_WorkGroupID.xy;
-    uint i = gl_LocalInvocationIndex;
+// the other waits. Where subgroups are full, each subgroup instead takes the dispatch's next unit
+// from a counter: the threads take turns through the tile, each near the other, and a unit is the
+// same pixels whichever thread takes it (so are the images and statistics). The persistent
+// kernel's subgroups go on taking units (main), so that a thread that is ahead takes more of them.
+uvec2 tileBlocks() {
+    uvec2 inside = min(params.tile.zw, params.image.xy - min(params.tile.xy, params.image.xy));
+    return (inside + gl_WorkGroupSize.xy - 1u) / gl_WorkGroupSize.xy;
+}
+
+uint tileUnits() {
+#ifndef VITRUM_NO_SUBGROUP_OPERATIONS
+    if (kFullSubgroups) {
+        uvec2 blocks = tileBlocks();
+        return blocks.x * blocks.y * gl_NumSubgroups;
+    }
+#endif
+    return 1u;
+}
+
+// The dispatch's next unit (the same in every lane).
+uint takeUnit() {
 #ifndef VITRUM_NO_SUBGROUP_OPERATIONS
     if (kFullSubgroups) {
         uint unit = 0u;
         if (firstLane()) unit = atomicAdd(stats[kWorkCursor], 1u);
-        unit = fromFirstLane(unit);
+        return fromFirstLane(unit);
+    }
+#endif
+    return 0u;
+}
+
+// This invocation's pixel in `unit`, relative to the tile. A block is walked in Morton order, so
+// that the 8 lanes of a lavapipe SIMD group cover 4x2 pixels rather than a row of 8: nearer pixels
+// send nearer rays, which visit more of the same BVH nodes, and the group's loops run fewer
+// iterations (docs/gpu-design.md).
+uvec2 tilePixel(uint unit) {
+    uvec2 block = gl_WorkGroupID.xy;
+    uint i = gl_LocalInvocationIndex;
+#ifndef VITRUM_NO_SUBGROUP_OPERATIONS
+    if (kFullSubgroups) {
         uint blockIndex = unit / gl_NumSubgroups;
-        block = uvec2(blockIndex % gl_NumWorkGroups.x, blockIndex / gl_NumWorkGroups.x);
+        uint blocksX = tileBlocks().x;
+        block = uvec2(blockIndex % blocksX, blockIndex / blocksX);
         i = (unit % gl_NumSubgroups) * gl_SubgroupSize + gl_SubgroupInvocationID;
     }
 #endif
@@ -523,17 +553,53 @@ const bool kStatOrderAsFilled =
     kStatMaxPixelSteps == 20u && kStatMaxRayDepth == 21u && kStatMaxMediumDepth == 22u && kStatCount == 23u;
 const uint kStatOrderCheck[kStatOrderAsFilled ? 1 : -1] = uint[](0u);
 
-void main() {
-    params = loadRenderParams();
-    uvec2 local = tilePixel();
+// Starts a unit in the persistent kernel: everything main's loop counts or carries for a unit's
+// pixel is as it was when the invocation began (their declarations' values). The tests compare
+// the persistent kernel's statistics with one unit an invocation's: a counter left out here would
+// count twice.
+void startUnit() {
+    gPixelSteps = 0u;
+    gNodeVisits = 0u;
+    gTraversalOverflows = 0u;
+    gRoundColour = vec3(0.0);
+    gTouchingInterfaces = 0u;
+    gTouchingProbes = 0u;
+    gMediumStackOverflows = 0u;
+    gBottom = 0u;
+    gLoadIndex = 0u;
+    gLoad = false;
+    gTaken = false;
+    gOwner = 0u;
+    gOwnLow = uvec4(0u);
+    gOwnHigh = uvec4(0u);
+    gOwnSteps = 0u;
+    gGroupTook = false;
+    gPrimaryRays = 0u;
+    gShadowRays = 0u;
+    gReflectionRays = 0u;
+    gRefractionRays = 0u;
+    gDepthLimitHits = 0u;
+    gRayStackOverflows = 0u;
+    gWeightCuts = 0u;
+    gTotalInternalReflections = 0u;
+    gAbsorbedEscapes = 0u;
+    gInconsistentMedia = 0u;
+    gMaxRayDepth = 0u;
+    gMaxMediumDepth = 0u;
+}
+
+// Traces the pixels of `unit` and adds what they counted to `total` and `totalMaxima`. Returns
+// the steps the SIMD group ran (the same in every lane).
+uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
+    uvec2 local = tilePixel(unit);
     uvec2 pixel = params.tile.xy + local;
     gPixel = pixel;
     // An invocation has a pixel to trace when it is inside the tile and the image and (in the
-    // resumable kernel) the pixel is not done yet. One without leaves at once, except where the
+    // resumable kernel) the pixel is not done yet. One without returns at once, except where the
     // statistics are summed by shuffles (kFullSubgroups, statistics.glsl), which read every lane:
     // it then runs no step and counts nothing.
     bool hasPixel = local.x < params.tile.z && local.y < params.tile.w && pixel.x < params.image.x && pixel.y < params.image.y;
-    if (!hasPixel && !kFullSubgroups) return;
+    if (!hasPixel && !kFullSubgroups) return 0u;
     uint slot = local.y * params.tile.z + local.x;
     pendingBase = slot * kPendingRayCapacity;
     stackBase = slot * kTraversalStackSize;
@@ -541,7 +607,7 @@ void main() {
         if (hasPixel) startPixel();
     } else {
         hasPixel = hasPixel && resumeState(slot);
-        if (!hasPixel && !kFullSubgroups) return;
+        if (!hasPixel && !kFullSubgroups) return 0u;
     }
     if (!hasPixel) st.control.x = kPhaseDone;
 
@@ -645,5 +711,42 @@ void main() {
     // how full the SIMD groups were (docs/gpu-design.md).
     uint groupSteps = groupMax(steps);
     sums.v4.w = firstLane() ? groupSteps : 0u;
-    addStatistics(sums, maxima);
+    addSums(total, sums);
+    totalMaxima = max(totalMaxima, maxima);
+    return groupSteps;
+}
+
+// The persistent kernel: the first dispatch's, where subgroups are full, on a device that runs
+// on the CPU (host/gpu/vulkan_renderer.cpp). Its subgroups take units until none is left or the
+// driver's loop limit could not hold another unit's budget.
+#ifndef VITRUM_NO_SUBGROUP_OPERATIONS
+const bool kPersistent = kPersistentSubgroups && kFullSubgroups && !kResumable;
+#else
+const bool kPersistent = false;
+#endif
+
+// lavapipe counts a subgroup's loop iterations over all the units it traces: their steps, at
+// most about 20 more a unit that the count misses (docs/gpu-design.md), the loop over the units
+// and, once, the statistics' loops. A unit is counted for 64 beyond its steps, and the limit is
+// kept 256 below lavapipe's.
+const uint kUnitIterationsBeyondSteps = 64u;
+const uint kDriverLoopIterations = 65535u - 256u;
+
+void main() {
+    params = loadRenderParams();
+    StatisticSums total = kNoStatistics;
+    uvec3 totalMaxima = uvec3(0u);
+    uint units = tileUnits();
+    uint iterations = 0u;  // lavapipe's count for this subgroup, bounded from above
+    // Every unit runs with the same budget (params.counts.w), whichever subgroup takes it and
+    // whatever it traced before: so a unit gives up the same pixels, and counts the same, in
+    // every kernel. A subgroup takes another unit only while the driver's limit still holds a
+    // whole budget more.
+    do {
+        uint unit = takeUnit();
+        if (unit >= units) break;
+        if (kPersistent) startUnit();
+        iterations += traceUnit(unit, total, totalMaxima) + kUnitIterationsBeyondSteps;
+    } while (kPersistent && iterations + params.counts.w + kUnitIterationsBeyondSteps <= kDriverLoopIterations);
+    addStatistics(total, totalMaxima);
 }

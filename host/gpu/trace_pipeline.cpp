@@ -1,6 +1,7 @@
 #include "gpu/trace_pipeline.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "trace.spv.h"
 #include "trace_without_subgroups.spv.h"
@@ -34,19 +35,22 @@ std::span<const std::uint32_t> traceKernelCode(StatisticsSums sums) {
 }
 
 ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization,
-                                  bool resumable, StatisticsSums sums) {
+                                  bool resumable, StatisticsSums sums, bool persistent) {
     std::array<VkDescriptorType, kTraceBindingCount> bindings;
     bindings.fill(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     for (TraceBinding texels : {kBindingParams, kBindingNodes, kBindingVertices, kBindingShading, kBindingMaterials, kBindingLights,
                                 kBindingObjectMedia})
         bindings[texels] = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
     const auto sceneConstants = specialization.constants();
-    // Then kResumable (constant_id 11) and kFullSubgroups (12).
+    // Then kResumable (constant_id 11), kFullSubgroups (12) and kPersistentSubgroups (13).
     const bool fullSubgroups = sums == StatisticsSums::shuffles;
-    std::array<std::uint32_t, sceneConstants.size() + 2> constants;
+    if (persistent && (resumable || !fullSubgroups))
+        throw std::logic_error("only the first dispatch's kernel in full subgroups can be persistent");
+    std::array<std::uint32_t, sceneConstants.size() + 3> constants;
     std::copy(sceneConstants.begin(), sceneConstants.end(), constants.begin());
     constants[sceneConstants.size()] = resumable ? 1u : 0u;
     constants[sceneConstants.size() + 1] = fullSubgroups ? 1u : 0u;
+    constants[sceneConstants.size() + 2] = persistent ? 1u : 0u;
     std::array<VkSpecializationMapEntry, constants.size()> entries;
     for (std::uint32_t id = 0; id < entries.size(); ++id)
         entries[id] = {.constantID = id, .offset = id * std::uint32_t(sizeof(std::uint32_t)), .size = sizeof(std::uint32_t)};

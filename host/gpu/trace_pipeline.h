@@ -51,8 +51,10 @@ std::span<const std::uint32_t> traceKernelCode(StatisticsSums sums);
 
 // The first dispatch of every tile runs the kernel built with `resumable` false; the pixels it
 // gives up are restarted by the resumable one (shaders/suspend.glsl). `sums` must be one that
-// statisticsSumsFor allows.
+// statisticsSumsFor allows. With `persistent` (the first dispatch's kernel in full subgroups
+// only), its subgroups take units of work until none is left (trace.comp's main), so the host
+// dispatches fewer workgroups than units.
 ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization,
-                                  bool resumable, StatisticsSums sums);
+                                  bool resumable, StatisticsSums sums, bool persistent = false);
 
 }  // namespace vitrum

@@ -14,6 +14,9 @@
 namespace vitrum {
 namespace {
 
+// The persistent kernel's dispatch: one subgroup a this many units of the tile.
+constexpr std::uint32_t kUnitsPerPersistentSubgroup = 8;
+
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
@@ -117,7 +120,12 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     const StatisticsSums sums = statisticsSumsFor(device, options.statisticsSums);
     // The build without subgroup operations counts each lane's steps as a group's.
     stats.lanesPerGroup = sums == StatisticsSums::atomics ? 1u : device.subgroups().size;
-    ComputePipeline firstPass = makeTracePipeline(device, kernel, false, sums);
+    // Subgroups that go on taking work (trace.comp's main) where the device runs on the CPU:
+    // lavapipe gives each of its threads a fixed share of a dispatch's workgroups, so a thread
+    // that runs ahead would otherwise wait for the others at the end (docs/gpu-design.md).
+    const bool persistent = options.persistentSubgroups && sums == StatisticsSums::shuffles &&
+                            device.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    ComputePipeline firstPass = makeTracePipeline(device, kernel, false, sums, persistent);
     firstPass.bind(bound);
     stats.addPhase("pipeline", secondsSince(start));
 
@@ -149,22 +157,51 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     double resumableSeconds = 0;
     // A tile at the image's right or bottom edge may be cut off: only the workgroups over its part
     // inside the image are dispatched.
-    auto dispatch = [&](const ComputePipeline& pipeline) {
-        std::memcpy(params.mapped(), &p, sizeof(p));
-        std::memset(counterValues, 0, gpu::kDispatchCounterCount * sizeof(std::uint32_t));
-        const std::uint32_t groupsX = (std::min(p.tile.z, width - p.tile.x) + kTraceGroupSize - 1) / kTraceGroupSize;
-        const std::uint32_t groupsY = (std::min(p.tile.w, height - p.tile.y) + kTraceGroupSize - 1) / kTraceGroupSize;
-        device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, groupsX, groupsY); });
+    auto tileGroups = [&] {
+        return glm::uvec2((std::min(p.tile.z, width - p.tile.x) + kTraceGroupSize - 1) / kTraceGroupSize,
+                          (std::min(p.tile.w, height - p.tile.y) + kTraceGroupSize - 1) / kTraceGroupSize);
+    };
+    // One dispatch of `groups` workgroups; returns the pixels it left unfinished.
+    auto run = [&](const ComputePipeline& pipeline, glm::uvec2 groups) {
+        device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, groups.x, groups.y); });
         ++stats.dispatches;
         addCounters(stats, counterValues);
         return counterValues[gpu::kStatUnfinishedPixels];
+    };
+    auto dispatch = [&](const ComputePipeline& pipeline) {
+        std::memcpy(params.mapped(), &p, sizeof(p));
+        std::memset(counterValues, 0, gpu::kDispatchCounterCount * sizeof(std::uint32_t));
+        return run(pipeline, tileGroups());
+    };
+    // The persistent kernel's subgroups take the tile's units until they are used up, or until
+    // each has traced as much as lavapipe's loop limit lets it: it is dispatched again, the work
+    // cursor kept, until the cursor has reached the units (a subgroup's share of a workgroup each:
+    // the pipeline's subgroups are full, of the device's subgroup size), since a subgroup traces
+    // every unit it takes. A subgroup that finds no unit costs a pass over the kernel's code
+    // (lavapipe runs every branch, masked), so there is one subgroup a kUnitsPerPersistentSubgroup
+    // units.
+    auto dispatchPersistent = [&](const ComputePipeline& pipeline) {
+        std::memcpy(params.mapped(), &p, sizeof(p));
+        std::memset(counterValues, 0, gpu::kDispatchCounterCount * sizeof(std::uint32_t));
+        const glm::uvec2 groups = tileGroups();
+        const std::uint32_t units = groups.x * groups.y * (kTraceGroupSize * kTraceGroupSize / device.subgroups().size);
+        const glm::uvec2 persistentGroups(
+            (groups.x * groups.y + kUnitsPerPersistentSubgroup - 1) / kUnitsPerPersistentSubgroup, 1);
+        std::uint32_t unfinished = 0;
+        for (;;) {
+            unfinished += run(pipeline, persistentGroups);
+            const std::uint32_t cursor = counterValues[gpu::kWorkCursor];
+            if (cursor >= units) return unfinished;
+            std::memset(counterValues, 0, gpu::kDispatchCounterCount * sizeof(std::uint32_t));
+            counterValues[gpu::kWorkCursor] = cursor;
+        }
     };
     start = Clock::now();
     for (std::uint32_t ty = 0; ty < tilesY; ++ty) {
         for (std::uint32_t tx = 0; tx < tilesX; ++tx) {
             const glm::uvec4 tile(tx * tileWidth, ty * tileHeight, tileWidth, tileHeight);
             p.tile = tile;
-            const std::uint32_t givenUp = dispatch(firstPass);
+            const std::uint32_t givenUp = persistent ? dispatchPersistent(firstPass) : dispatch(firstPass);
             stats.restartedPixels += givenUp;
             if (givenUp > 0 && !resumable) {
                 const auto buildStart = Clock::now();

@@ -35,6 +35,10 @@ struct VulkanRenderOptions {
     // How the kernel adds up its statistics: this way, or the nearest way before it that the
     // device can run (gpu/trace_pipeline.h's statisticsSumsFor). The same numbers every way.
     StatisticsSums statisticsSums = StatisticsSums::shuffles;
+    // On a device that runs on the CPU, with shuffles: the first dispatch's subgroups take units
+    // of work until none is left, so that the CPU's threads share the work however fast each runs.
+    // The same image and statistics either way (but the dispatches).
+    bool persistentSubgroups = true;
     std::function<void(double)> progress;  // fraction done
 };
 
