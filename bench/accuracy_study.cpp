@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -48,10 +49,11 @@ const char* kDefaultScenes[] = {
 
 // A render longer than this is timed once: its run-to-run noise is small against its length.
 // Shorter ones are repeated until they have filled about kTimedSeconds, up to kMaxRuns times:
-// lavapipe's run-to-run noise on a 2-core machine is 10-30% for a render of 0.1 s.
+// lavapipe's run-to-run noise on a 2-core machine is 10-30% for a render of 0.1 s, and a render
+// of 10 ms at the study's size now and then takes twice as long (the hypervisor takes a CPU).
 constexpr double kTimeOnceSeconds = 3.0;
 constexpr double kTimedSeconds = 1.2;
-constexpr int kMaxRuns = 7;
+constexpr int kMaxRuns = 15;
 constexpr float kHeatMapFullScale = 0.05f;
 
 struct Options {
@@ -67,7 +69,12 @@ struct Measured {
     double seconds = 0;  // median render time
     double compile = 0;  // GPU: pipeline creation + first dispatch of the first run
     int runs = 0;
-    double spread = 0;   // (slowest - fastest) / median over the runs
+    double spread = 0;   // interquartile range / median over the runs: one slow run does not move it
+    // Against renders of the default setting taken in turns with these (GPU rows but the default's
+    // own): the median of the runs' ratios, and the middle half of those ratios. The machine's
+    // drift between one setting's renders and another's falls on both sides of a ratio alike.
+    std::optional<double> vsDefault;
+    double vsDefaultLow = 0, vsDefaultHigh = 0;
     RenderStats stats;
 };
 
@@ -84,35 +91,52 @@ int runsFor(double firstSeconds, int runs) {
     return std::clamp(int(std::ceil(kTimedSeconds / std::max(firstSeconds, 1e-3))), runs, std::max(runs, kMaxRuns));
 }
 
-// Renders `runs` times (see runsFor) with render(stats) and keeps the last image.
-template <class Render>
-Measured measure(int runs, Render render) {
+using RenderOnce = std::function<Image(RenderStats&)>;
+
+// Renders `runs` times (see runsFor) with render(stats) and keeps the last image. With
+// `pairedDefault`, each run is paired with a render of the default setting, the two taking turns
+// as to which goes first, and vsDefault is worked out from the pairs.
+Measured measure(int runs, const RenderOnce& render, const RenderOnce* pairedDefault = nullptr) {
     Measured m;
-    std::vector<double> times;
+    std::vector<double> times, ratios;
     int wanted = runs;
     for (int run = 0; run < wanted; ++run) {
+        double defaultSeconds = 0;
+        auto renderDefault = [&] {
+            RenderStats stats;
+            (*pairedDefault)(stats);
+            defaultSeconds = stats.seconds("render");
+        };
+        if (pairedDefault && run % 2 == 1) renderDefault();
         RenderStats stats;
         Image image = render(stats);
+        if (pairedDefault && run % 2 == 0) renderDefault();
         if (run == 0) m.compile = stats.seconds("pipeline") + stats.seconds("compile");
         times.push_back(stats.seconds("render"));
+        if (pairedDefault && defaultSeconds > 0) ratios.push_back(times.back() / defaultSeconds);
         if (run == 0) wanted = runsFor(times.back(), runs);
         m.stats = stats;
         m.image = std::move(image);
     }
     m.seconds = bench::median(times);
     m.runs = int(times.size());
-    m.spread = m.seconds > 0 ? (*std::max_element(times.begin(), times.end()) - *std::min_element(times.begin(), times.end())) / m.seconds : 0;
+    m.spread = m.seconds > 0 ? (bench::quantile(times, 0.75) - bench::quantile(times, 0.25)) / m.seconds : 0;
+    if (!ratios.empty()) {
+        m.vsDefault = bench::median(ratios);
+        m.vsDefaultLow = bench::quantile(ratios, 0.25);
+        m.vsDefaultHigh = bench::quantile(ratios, 0.75);
+    }
     return m;
 }
 
-Measured measureGpu(VulkanDevice& device, const Scene& scene, const Bvh& bvh, int runs) {
-    return measure(runs, [&](RenderStats& stats) { return renderVulkan(device, scene, bvh, VulkanRenderOptions{}, stats); });
+RenderOnce gpuRender(VulkanDevice& device, const Scene& scene, const Bvh& bvh) {
+    return [&device, &scene, &bvh](RenderStats& stats) { return renderVulkan(device, scene, bvh, VulkanRenderOptions{}, stats); };
 }
 
 Measured measureCpu(const Scene& scene, const Bvh& bvh, bool doublePrecision, int runs) {
     ReferenceOptions options;
     options.doublePrecision = doublePrecision;
-    return measure(runs, [&](RenderStats& stats) { return renderReference(scene, bvh, options, stats); });
+    return measure(runs, [&](RenderStats& stats) { return renderReference(scene, bvh, options, stats); }, nullptr);
 }
 
 Image renderTruth(Scene scene, const Bvh& bvh, const RenderSettings& settings, double& seconds) {
@@ -135,13 +159,20 @@ std::string percent(double share) { return bench::fixed(100.0 * share, share < 0
 
 std::string psnrText(double psnr) { return std::isinf(psnr) ? "inf" : bench::fixed(psnr, 1); }
 
-// "+12% time" / "-30% time" / "4.1x the time"; a change smaller than the run-to-run spread of
-// the default's renders (`noise`, a share of its median) is said to be within it.
-std::string timeChange(double from, double to, double noise) {
-    const double ratio = to / from;
-    if (ratio >= 2.0) return bench::fixed(ratio, 1) + "x the time";
-    const std::string change = (ratio >= 1 ? "+" : "") + bench::fixed(100.0 * (ratio - 1.0), 0) + "% time";
-    if (std::fabs(ratio - 1.0) <= noise) return change + " (within the run-to-run spread of " + bench::fixed(100.0 * noise, 0) + "%)";
+// "+12% time" / "-30% time" / "4.1x the time" for a time `ratio`. `noise` says when it is not a
+// measured difference: when the middle half of the ratios of the runs taken in turns with the
+// default's contains 1.
+struct TimeRatio {
+    double ratio = 1;
+    std::optional<std::pair<double, double>> middleHalf;  // of the paired runs' ratios
+};
+
+std::string timeChange(const TimeRatio& t) {
+    if (t.ratio >= 2.0) return bench::fixed(t.ratio, 1) + "x the time";
+    const std::string change = (t.ratio >= 1 ? "+" : "") + bench::fixed(100.0 * (t.ratio - 1.0), 0) + "% time";
+    if (t.middleHalf && t.middleHalf->first <= 1.0 && 1.0 <= t.middleHalf->second)
+        return change + " (not measured: the middle half of its runs took " + bench::fixed(t.middleHalf->first, 2) + "-" +
+               bench::fixed(t.middleHalf->second, 2) + "x the default's time)";
     return change;
 }
 
@@ -206,6 +237,13 @@ const Row& defaultRow(const SceneStudy& s) {
 // The error a row is judged by in sentences: the approximation error where there is one.
 double judgedError(const Row& r) { return r.approximation ? r.approximation->diff.rmse : r.total.diff.rmse; }
 
+// A row's time against the default's: from the renders taken in turns where there are some (GPU
+// rows), else the ratio of the two medians (the default itself, CPU rows).
+TimeRatio vsDefault(const Row& r, const Row& base) {
+    if (!r.measured.vsDefault) return {r.measured.seconds / base.measured.seconds, std::nullopt};
+    return {*r.measured.vsDefault, std::make_pair(r.measured.vsDefaultLow, r.measured.vsDefaultHigh)};
+}
+
 SceneStudy studyScene(VulkanDevice& device, const std::string& file, const Options& options,
                       const std::vector<StudySetting>& settings, const fs::path& studyDir) {
     Scene scene = loadScene(fs::path(VITRUM_SOURCE_DIR) / file);
@@ -233,14 +271,21 @@ SceneStudy studyScene(VulkanDevice& device, const std::string& file, const Optio
     writeImage(converged, heatDir / "converged.png");
     std::cerr << " " << bench::fixed(c.seconds, 1) << " s\n";
 
+    // Every GPU setting's renders take turns with renders of the default setting.
+    Scene defaultScene = scene;
+    const auto defaultSetting = std::find_if(settings.begin(), settings.end(), [](const StudySetting& s) { return s.isDefault; });
+    if (defaultSetting == settings.end()) throw std::runtime_error("the study has no default setting");
+    defaultScene.settings = defaultSetting->render;
+    const RenderOnce renderDefault = gpuRender(device, defaultScene, bvh);
     for (std::size_t i = 0; i < settings.size(); ++i) {
         const StudySetting& s = settings[i];
         std::cerr << "  [" << i + 1 << "/" << settings.size() << "] " << s.label << " ..." << std::flush;
         scene.settings = s.render;
         Row row;
         row.setting = &s;
-        row.measured = s.backend == Backend::Gpu ? measureGpu(device, scene, bvh, options.runs)
-                                                 : measureCpu(scene, bvh, s.backend == Backend::CpuDouble, options.runs);
+        row.measured = s.backend == Backend::Gpu
+                           ? measure(options.runs, gpuRender(device, scene, bvh), s.isDefault ? nullptr : &renderDefault)
+                           : measureCpu(scene, bvh, s.backend == Backend::CpuDouble, options.runs);
         const Image* reference = &converged;
         if (s.render.samplesPerPixel == 1) {
             row.approximation = compare(row.measured.image, truth);
@@ -290,7 +335,7 @@ std::string sceneTable(const SceneStudy& s) {
         const std::uint64_t rays = r.measured.stats.rays.total();
         t << "| " << (r.setting->isDefault ? "**" + r.setting->label + " (default)**" : r.setting->label)
           << (onFront ? " [front]" : "") << " | " << backendName(r.setting->backend) << " | " << bench::fixed(r.measured.seconds, 3)
-          << " (" << r.measured.runs << (r.measured.runs == 1 ? " run" : " runs") << ")" << " | " << bench::fixed(r.measured.seconds / base.measured.seconds, 2) << "x | "
+          << " (" << r.measured.runs << (r.measured.runs == 1 ? " run" : " runs") << ")" << " | " << bench::fixed(vsDefault(r, base).ratio, 2) << "x | "
           << (r.setting->backend == Backend::Gpu ? bench::fixed(r.measured.compile, 2) : "-") << " | " << rays << " | "
           << bench::fixed(double(rays) / r.measured.seconds * 1e-6, 2) << " | ";
         if (r.approximation) {
@@ -317,15 +362,15 @@ std::string sceneSentences(const SceneStudy& s) {
         if (!r) return;
         const double from = total ? base.total.diff.rmse : judgedError(base);
         const double to = total ? r->total.diff.rmse : judgedError(*r);
-        t << "- " << what << ": " << timeChange(baseTime, r->measured.seconds, base.measured.spread) << ", "
-          << errorChange(from, to) << ".\n";
+        t << "- " << what << ": " << timeChange(vsDefault(*r, base)) << ", " << errorChange(from, to) << ".\n";
     };
-    t << "- timing noise: the default's " << base.measured.runs << " renders spread over " << bench::fixed(100.0 * base.measured.spread, 0)
-      << "% of their median; smaller time differences are not measured.\n";
+    t << "- timing noise: the middle half of the default's " << base.measured.runs << " renders spread over "
+      << bench::fixed(100.0 * base.measured.spread, 0) << "% of their median (interquartile range). Each other GPU "
+      << "setting is timed against renders of the default taken in turns with its own.\n";
     const Row* d4 = find(s, "depth 4");
     if (d4) {
         const Row* d10 = find(s, "depth 10");
-        t << "- depth 10 instead of 4: " << timeChange(d4->measured.seconds, d10->measured.seconds, base.measured.spread) << ", "
+        t << "- depth 10 instead of 4: " << timeChange({vsDefault(*d10, base).ratio / vsDefault(*d4, base).ratio, std::nullopt}) << ", "
           << errorChange(judgedError(*d4), judgedError(*d10)) << ".\n";
     }
     line("depth 16 instead of 10", find(s, "depth 16"), false);
@@ -381,7 +426,7 @@ std::string summaryTable(const std::vector<SceneStudy>& studies) {
         auto cell = [&](const char* label, bool total) -> std::string {
             const Row* r = find(s, label);
             if (!r) return "-";
-            return bench::fixed(r->measured.seconds / base.measured.seconds, 2) + "x, " + sci(total ? r->total.diff.rmse : judgedError(*r));
+            return bench::fixed(vsDefault(*r, base).ratio, 2) + "x, " + sci(total ? r->total.diff.rmse : judgedError(*r));
         };
         const Row* cpu = find(s, "CPU double");
         const Row* schlick = find(s, "GPU, truth settings, Schlick");
@@ -471,7 +516,10 @@ int run(int argc, char** argv) {
        << "until they fill about that long, up to " << kMaxRuns << " times, and renders over " << bench::fixed(kTimeOnceSeconds, 0)
        << " s are timed once; the table gives the count); compile is pipeline creation plus the first dispatch, from a Mesa shader cache that "
           "was empty when the study started (a kernel another setting already built comes from the cache). CPU rows "
-          "run the reference renderer on all hardware threads. Ratios compare renders of one run of the study.\n\n"
+          "run the reference renderer on all hardware threads. Each GPU setting's renders take turns with as many renders of the "
+          "default setting, and its time against the default's (`vs default`, the sentences) is the median of those pairs' ratios: "
+          "the machine's drift over the minutes between two settings falls on both alike. A difference is called not measured "
+          "when the middle half of its pairs' ratios contains 1.\n\n"
        << "## Ground truth\n\n"
        << "The CPU reference in double precision with exact Fresnel and bilinear filtering, `max_depth` " << kTruthDepth
        << " and a weight cut-off of " << kTruthMinWeight << ", one sample at each pixel centre: the same sample "

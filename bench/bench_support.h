@@ -1,4 +1,4 @@
-// What the benchmark programs share: the median, number formatting, the machine and the date
+// What the benchmark programs share: the median and quantiles, number formatting, the machine and the date
 // for their reports, and a main() that turns an exception into a message and exit code 1.
 #pragma once
 
@@ -18,6 +18,16 @@ inline double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     const std::size_t n = v.size();
     return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// The q-quantile of v (0 <= q <= 1), interpolated linearly between the two nearest order statistics.
+inline double quantile(std::vector<double> v, double q) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const double at = q * double(v.size() - 1);
+    const std::size_t below = std::size_t(at);
+    const std::size_t above = std::min(below + 1, v.size() - 1);
+    return v[below] + (at - double(below)) * (v[above] - v[below]);
 }
 
 // "CPU model, N hardware threads".

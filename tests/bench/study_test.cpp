@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include "bench_support.h"
 #include "study/pareto.h"
 
 namespace vitrum::study {
@@ -27,6 +28,21 @@ TEST(Pareto, KeepsThePointsNothingBeatsOnBothTimeAndError) {
 TEST(Pareto, EqualTimesKeepOnlyTheSmallerErrorAndEmptyInputGivesNoFront) {
     EXPECT_EQ(paretoFront({{2.0, 0.3}, {2.0, 0.2}, {1.0, 0.9}}), (std::vector<std::size_t>{2, 1}));
     EXPECT_TRUE(paretoFront({}).empty());
+}
+
+// The study's timing noise is the interquartile range: the quartiles of 1..5 are 2 and 4; of
+// 1, 2, 3, 4 (interpolated a quarter and three quarters of the way along) 1.75 and 3.25. One
+// slow run among many moves the range little, where it would double the slowest-to-fastest one.
+TEST(Quantile, InterpolatesBetweenOrderStatisticsWhateverTheOrder) {
+    EXPECT_DOUBLE_EQ(bench::quantile({5, 1, 4, 2, 3}, 0.25), 2.0);
+    EXPECT_DOUBLE_EQ(bench::quantile({5, 1, 4, 2, 3}, 0.75), 4.0);
+    EXPECT_DOUBLE_EQ(bench::quantile({4, 3, 2, 1}, 0.25), 1.75);
+    EXPECT_DOUBLE_EQ(bench::quantile({4, 3, 2, 1}, 0.75), 3.25);
+    EXPECT_DOUBLE_EQ(bench::quantile({4, 3, 2, 1}, 0.5), bench::median({4, 3, 2, 1}));
+    EXPECT_DOUBLE_EQ(bench::quantile({7}, 0.75), 7.0);
+    EXPECT_DOUBLE_EQ(bench::quantile({}, 0.5), 0.0);
+    const std::vector<double> steadyButOneSlow = {10, 10, 10, 11, 11, 11, 11, 12, 12, 12, 12, 13, 13, 13, 30};
+    EXPECT_LE(bench::quantile(steadyButOneSlow, 0.75) - bench::quantile(steadyButOneSlow, 0.25), 2.0);
 }
 
 std::string read(const fs::path& path) {
