@@ -136,7 +136,7 @@ RenderOnce gpuRender(VulkanDevice& device, const Scene& scene, const Bvh& bvh) {
 Measured measureCpu(const Scene& scene, const Bvh& bvh, bool doublePrecision, int runs) {
     ReferenceOptions options;
     options.doublePrecision = doublePrecision;
-    return measure(runs, [&](RenderStats& stats) { return renderReference(scene, bvh, options, stats); }, nullptr);
+    return measure(runs, [&](RenderStats& stats) { return renderReference(scene, bvh, options, stats); });
 }
 
 Image renderTruth(Scene scene, const Bvh& bvh, const RenderSettings& settings, double& seconds) {
@@ -159,14 +159,15 @@ std::string percent(double share) { return bench::fixed(100.0 * share, share < 0
 
 std::string psnrText(double psnr) { return std::isinf(psnr) ? "inf" : bench::fixed(psnr, 1); }
 
-// "+12% time" / "-30% time" / "4.1x the time" for a time `ratio`. `noise` says when it is not a
-// measured difference: when the middle half of the ratios of the runs taken in turns with the
-// default's contains 1.
+// A time against another: the ratio, and where there is one, the middle half of the ratios of
+// the runs taken in turns with the default's.
 struct TimeRatio {
     double ratio = 1;
     std::optional<std::pair<double, double>> middleHalf;  // of the paired runs' ratios
 };
 
+// "+12% time" / "-30% time" / "4.1x the time"; not a measured difference when the middle half of
+// the paired runs' ratios contains 1.
 std::string timeChange(const TimeRatio& t) {
     if (t.ratio >= 2.0) return bench::fixed(t.ratio, 1) + "x the time";
     const std::string change = (t.ratio >= 1 ? "+" : "") + bench::fixed(100.0 * (t.ratio - 1.0), 0) + "% time";

@@ -10,17 +10,13 @@
 #include <iostream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace vitrum::bench {
 
-inline double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// The q-quantile of v (0 <= q <= 1), interpolated linearly between the two nearest order statistics.
+// The q-quantile of v (0 <= q <= 1), interpolated linearly between the two nearest order
+// statistics; 0 for no values.
 inline double quantile(std::vector<double> v, double q) {
     if (v.empty()) return 0.0;
     std::sort(v.begin(), v.end());
@@ -29,6 +25,9 @@ inline double quantile(std::vector<double> v, double q) {
     const std::size_t above = std::min(below + 1, v.size() - 1);
     return v[below] + (at - double(below)) * (v[above] - v[below]);
 }
+
+// The middle value, or the mean of the two middle ones.
+inline double median(std::vector<double> v) { return quantile(std::move(v), 0.5); }
 
 // "CPU model, N hardware threads".
 inline std::string machine() {
