@@ -1,7 +1,8 @@
 // The specialized kernel against the general one, scene by scene, on the Vulkan device (lavapipe
-// by default): render time (median of several runs), the first dispatch's compile time with an
-// empty and with a warm Mesa shader cache, the per-pixel state, and the work the specialized
-// kernel skips. Writes a Markdown report (docs/specialization.md); `make bench-specialization`.
+// by default): render time (median of several runs, the two kernels taking turns), the time to
+// create the pipeline and compile it at the first dispatch with an empty and with a warm Mesa
+// shader cache, the per-pixel state, and the work the specialized kernel skips. Writes a Markdown
+// report (docs/specialization.md); `make bench-specialization`.
 //
 //   vitrum_bench_specialization OUT.md [RUNS] [WIDTH HEIGHT]
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include <iostream>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include <unistd.h>
 
@@ -41,42 +43,58 @@ const char* kScenes[] = {
     "scenes/glass_sphere_spherical.json",       // an environment map
 };
 
+// One kernel's measurements on one scene.
 struct Measured {
-    double coldCompile = 0;  // pipeline creation + first dispatch, empty shader cache
-    double warmCompile = 0;  // the same with the cache the cold run filled
-    double render = 0;       // median over the runs
+    double coldCompile = 0;            // pipeline creation + first dispatch, empty shader cache
+    std::vector<double> warmCompiles;  // the same with the cache the cold runs filled, a run each
+    std::vector<double> renders;       // tile dispatches only, a run each
     RenderStats stats;
     Image image;
 };
 
-Measured measure(const Scene& scene, const Bvh& bvh, bool specialize, int runs, const fs::path& cacheRoot) {
+// Both kernels on one scene. The warm renders take turns (the general kernel first in even runs,
+// the specialized one in odd runs), so that the machine's drift over the runs falls on both alike,
+// and the speed-up is the median of each run's pair.
+struct Compared {
+    Measured general, special;
+    std::vector<double> speedUps;  // a run each: general render / specialized render
+};
+
+Measured& kernel(Compared& c, bool specialize) { return specialize ? c.special : c.general; }
+
+Compared compare(const Scene& scene, const Bvh& bvh, int runs, const fs::path& cacheRoot) {
     // A shader cache of its own, empty at first: Mesa reads MESA_SHADER_CACHE_DIR when the device
-    // is made, and writes the cache out when it is destroyed.
-    const fs::path cache = cacheRoot / (scene.source.stem().string() + (specialize ? "-specialized" : "-general"));
+    // is made, and writes the cache out when it is destroyed. The two kernels are different
+    // shaders to it, so each one's first render finds nothing of its own there.
+    const fs::path cache = cacheRoot / scene.source.stem();
     fs::remove_all(cache);
     fs::create_directories(cache);
     setenv("MESA_SHADER_CACHE_DIR", cache.c_str(), 1);
-    VulkanRenderOptions options;
-    options.specialize = specialize;
-    Measured m;
-    {
-        VulkanDevice device("");
+    auto render = [&](VulkanDevice& device, bool specialize, Measured& m) {
+        VulkanRenderOptions options;
+        options.specialize = specialize;
         RenderStats stats;
-        renderVulkan(device, scene, bvh, options, stats);
-        m.coldCompile = stats.seconds("pipeline") + stats.seconds("compile");
+        m.image = renderVulkan(device, scene, bvh, options, stats);
+        m.stats = stats;
+        return stats;
+    };
+    Compared c;
+    for (bool specialize : {false, true}) {
+        VulkanDevice device("");
+        const RenderStats stats = render(device, specialize, kernel(c, specialize));
+        kernel(c, specialize).coldCompile = stats.seconds("pipeline") + stats.seconds("compile");
     }
     VulkanDevice device("");
-    std::vector<double> times;
     for (int run = 0; run < runs; ++run) {
-        RenderStats stats;
-        Image image = renderVulkan(device, scene, bvh, options, stats);
-        if (run == 0) m.warmCompile = stats.seconds("pipeline") + stats.seconds("compile");
-        times.push_back(stats.seconds("render"));
-        m.stats = stats;
-        m.image = std::move(image);
+        for (bool specialize : {run % 2 == 1, run % 2 == 0}) {
+            Measured& m = kernel(c, specialize);
+            const RenderStats stats = render(device, specialize, m);
+            m.warmCompiles.push_back(stats.seconds("pipeline") + stats.seconds("compile"));
+            m.renders.push_back(stats.seconds("render"));
+        }
+        c.speedUps.push_back(c.general.renders.back() / c.special.renders.back());
     }
-    m.render = bench::median(times);
-    return m;
+    return c;
 }
 
 int run(int argc, char** argv) {
@@ -97,22 +115,25 @@ int run(int argc, char** argv) {
         scene.camera.width = width;
         scene.camera.height = height;
         Bvh bvh = buildBvh(scene.triangles);
-        std::cerr << file << ": general ..." << std::flush;
-        Measured general = measure(scene, bvh, false, runs, cacheRoot);
-        std::cerr << " specialized ..." << std::flush;
-        Measured special = measure(scene, bvh, true, runs, cacheRoot);
+        std::cerr << file << ": " << std::flush;
+        const Compared c = compare(scene, bvh, runs, cacheRoot);
+        const Measured& general = c.general;
+        const Measured& special = c.special;
         deviceName = general.stats.device;
         const bool identical =
             general.image.pixels.size() == special.image.pixels.size() &&
             std::memcmp(general.image.pixels.data(), special.image.pixels.data(),
                         general.image.pixels.size() * sizeof(glm::vec3)) == 0;
-        std::cerr << " " << bench::fixed(general.render / special.render, 2) << "x\n";
+        const double speedUp = bench::median(c.speedUps);
+        std::cerr << bench::fixed(speedUp, 2) << "x\n";
         const TraceSpecialization& k = *special.stats.kernel;
         const std::string name = fs::path(file).stem().string();
-        rows << "| " << name << " | " << bench::fixed(general.render, 3) << " | " << bench::fixed(special.render, 3) << " | **"
-             << bench::fixed(general.render / special.render, 2) << "x** | " << bench::fixed(general.coldCompile, 2) << " | "
-             << bench::fixed(special.coldCompile, 2) << " | " << bench::fixed(general.warmCompile, 3) << " | "
-             << bench::fixed(special.warmCompile, 3) << " | " << (identical ? "yes" : "**no**") << " |\n";
+        rows << "| " << name << " | " << bench::fixed(bench::median(general.renders), 3) << " | "
+             << bench::fixed(bench::median(special.renders), 3) << " | **" << bench::fixed(speedUp, 2) << "x** | "
+             << bench::fixed(bench::quantile(c.speedUps, 0.25), 2) << "-" << bench::fixed(bench::quantile(c.speedUps, 0.75), 2)
+             << "x | " << bench::fixed(general.coldCompile, 2) << " | " << bench::fixed(special.coldCompile, 2) << " | "
+             << bench::fixed(bench::median(general.warmCompiles), 3) << " | "
+             << bench::fixed(bench::median(special.warmCompiles), 3) << " | " << (identical ? "yes" : "**no**") << " |\n";
         const std::uint32_t tile = VulkanRenderOptions{}.tileSize;
         const double tilePixels = double(std::min(tile, width)) * std::min(tile, height);
         work << "| " << name << " | " << special.stats.rays.total() << " | " << k.mediumStackDepth << " | "
@@ -134,14 +155,17 @@ int run(int argc, char** argv) {
            << deviceName << ".\n"
            << "Each scene at " << width << "x" << height << ", 1 sample per pixel, its own max_depth and Fresnel model. "
            << "Render time is the median of " << runs
-           << " renders (tile dispatches only, the compile excluded); compile time is pipeline creation plus the "
-              "first dispatch (lavapipe compiles there) of an empty tile, with an empty Mesa shader cache (cold) and "
-              "with the cache the cold run filled (warm). Ratios come from one run of this program.\n\n"
+           << " renders (tile dispatches only, the compile excluded), the two kernels taking turns; the speed-up is "
+              "the median of the runs' ratios (general over specialized, each run's pair rendered one after the other), "
+              "with the middle half of those ratios beside it, so that the machine's drift falls on both kernels alike. "
+              "Compile time is pipeline creation plus the first dispatch (lavapipe compiles there) of an empty tile, with "
+              "an empty Mesa shader cache (cold, once) and with the cache the cold runs filled (warm, the median of the "
+              "runs). Ratios come from one run of this program.\n\n"
            << "What the kernels are and why they give the same image: [gpu-design.md](gpu-design.md#specialized-kernels).\n\n"
-           << "| scene | general render s | specialized render s | speed-up | general compile s (cold) | "
+           << "| scene | general render s | specialized render s | speed-up | middle half | general compile s (cold) | "
               "specialized compile s (cold) | general compile s (warm cache) | specialized compile s (warm cache) | "
               "same image, bit for bit |\n"
-           << "|---|---:|---:|---:|---:|---:|---:|---:|---|\n"
+           << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n"
            << rows.str() << "\n"
            << "## Work skipped\n\n"
            << "Rays traced are the same for both kernels (the tests check it); the specialized kernel's stacks are "
