@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -24,6 +25,7 @@
 #include "common/atomic_file.h"
 #include "cpu/reference_renderer.h"
 #include "gpu/vulkan_device.h"
+#include "gpu/trace_kernel_cache.h"
 #include "gpu/vulkan_renderer.h"
 #include "image/image_diff.h"
 #include "image/ssim.h"
@@ -129,8 +131,13 @@ Measured measure(int runs, const RenderOnce& render, const RenderOnce* pairedDef
     return m;
 }
 
+// Renders on the GPU with kernels of its own, kept across its renders (gpu/trace_kernel_cache.h):
+// its first render creates and compiles them (the compile column), the later ones reuse them.
 RenderOnce gpuRender(VulkanDevice& device, const Scene& scene, const Bvh& bvh) {
-    return [&device, &scene, &bvh](RenderStats& stats) { return renderVulkan(device, scene, bvh, VulkanRenderOptions{}, stats); };
+    auto kernels = std::make_shared<TraceKernelCache>();
+    return [&device, &scene, &bvh, kernels](RenderStats& stats) {
+        return renderVulkan(device, scene, bvh, VulkanRenderOptions{.kernels = kernels.get()}, stats);
+    };
 }
 
 Measured measureCpu(const Scene& scene, const Bvh& bvh, bool doublePrecision, int runs) {

@@ -34,6 +34,21 @@ std::span<const std::uint32_t> traceKernelCode(StatisticsSums sums) {
                : std::span<const std::uint32_t>(trace_without_subgroups_spv, std::size(trace_without_subgroups_spv));
 }
 
+TraceKernelConstants traceKernelConstants(const TraceSpecialization& specialization, bool resumable, StatisticsSums sums,
+                                          bool persistent) {
+    const bool fullSubgroups = sums == StatisticsSums::shuffles;
+    if (persistent && (resumable || !fullSubgroups))
+        throw std::logic_error("only the first dispatch's kernel in full subgroups can be persistent");
+    const auto sceneConstants = specialization.constants();
+    // Then kResumable (constant_id 11), kFullSubgroups (12) and kPersistentSubgroups (13).
+    TraceKernelConstants constants;
+    std::copy(sceneConstants.begin(), sceneConstants.end(), constants.begin());
+    constants[sceneConstants.size()] = resumable ? 1u : 0u;
+    constants[sceneConstants.size() + 1] = fullSubgroups ? 1u : 0u;
+    constants[sceneConstants.size() + 2] = persistent ? 1u : 0u;
+    return constants;
+}
+
 ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization,
                                   bool resumable, StatisticsSums sums, bool persistent) {
     std::array<VkDescriptorType, kTraceBindingCount> bindings;
@@ -41,16 +56,7 @@ ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecial
     for (TraceBinding texels : {kBindingParams, kBindingNodes, kBindingVertices, kBindingShading, kBindingMaterials, kBindingLights,
                                 kBindingObjectMedia})
         bindings[texels] = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
-    const auto sceneConstants = specialization.constants();
-    // Then kResumable (constant_id 11), kFullSubgroups (12) and kPersistentSubgroups (13).
-    const bool fullSubgroups = sums == StatisticsSums::shuffles;
-    if (persistent && (resumable || !fullSubgroups))
-        throw std::logic_error("only the first dispatch's kernel in full subgroups can be persistent");
-    std::array<std::uint32_t, sceneConstants.size() + 3> constants;
-    std::copy(sceneConstants.begin(), sceneConstants.end(), constants.begin());
-    constants[sceneConstants.size()] = resumable ? 1u : 0u;
-    constants[sceneConstants.size() + 1] = fullSubgroups ? 1u : 0u;
-    constants[sceneConstants.size() + 2] = persistent ? 1u : 0u;
+    const TraceKernelConstants constants = traceKernelConstants(specialization, resumable, sums, persistent);
     std::array<VkSpecializationMapEntry, constants.size()> entries;
     for (std::uint32_t id = 0; id < entries.size(); ++id)
         entries[id] = {.constantID = id, .offset = id * std::uint32_t(sizeof(std::uint32_t)), .size = sizeof(std::uint32_t)};
@@ -61,7 +67,7 @@ ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecial
         .pData = constants.data(),
     };
     return ComputePipeline(device, traceKernelCode(sums), bindings, &info,
-                           fullSubgroups ? VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT_EXT : 0);
+                           sums == StatisticsSums::shuffles ? VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT_EXT : 0);
 }
 
 }  // namespace vitrum

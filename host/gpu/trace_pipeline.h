@@ -49,6 +49,13 @@ const char* statisticsSumsName(StatisticsSums sums);
 // one without).
 std::span<const std::uint32_t> traceKernelCode(StatisticsSums sums);
 
+// The specialization constants of one trace kernel, in constant_id order: the scene's
+// (TraceSpecialization::constants), then kResumable, kFullSubgroups and kPersistentSubgroups.
+// Together with the code (traceKernelCode(sums)) they name the kernel.
+using TraceKernelConstants = std::array<std::uint32_t, TraceSpecialization::kConstantCount + 3>;
+TraceKernelConstants traceKernelConstants(const TraceSpecialization& specialization, bool resumable, StatisticsSums sums,
+                                          bool persistent);
+
 // The first dispatch of every tile runs the kernel built with `resumable` false; the pixels it
 // gives up are restarted by the resumable one (shaders/suspend.glsl). `sums` must be one that
 // statisticsSumsFor allows. With `persistent` (the first dispatch's kernel in full subgroups

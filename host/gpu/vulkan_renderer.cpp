@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
-#include <optional>
 
 #include "gpu/gpu_buffer.h"
 #include "gpu/gpu_layout.h"
+#include "gpu/trace_kernel_cache.h"
 #include "gpu/trace_pipeline.h"
 #include "render/packed_scene.h"
 #include "render/scene_features.h"
@@ -125,8 +125,10 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     // that runs ahead would otherwise wait for the others at the end (docs/gpu-design.md).
     const bool persistent = options.persistentSubgroups && sums == StatisticsSums::shuffles &&
                             device.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-    ComputePipeline firstPass = makeTracePipeline(device, kernel, false, sums, persistent);
-    firstPass.bind(bound);
+    TraceKernelCache ownKernels(2);
+    TraceKernelCache& kernels = options.kernels ? *options.kernels : ownKernels;
+    const TraceKernelCache::Kernel firstPass = kernels.get(device, kernel, false, sums, persistent);
+    firstPass.pipeline.bind(bound);
     stats.addPhase("pipeline", secondsSince(start));
 
     gpu::RenderParams p = makeRenderParams(scene, packed.bvh.rootEntry);
@@ -142,18 +144,20 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     auto* counterValues = counters.as<std::uint32_t>();
 
     // lavapipe compiles a kernel at its first dispatch: one that traces nothing (an empty tile)
-    // measures the compile time alone.
-    auto compile = [&](const ComputePipeline& pipeline) {
+    // measures the compile time alone. A kernel dispatched before (kept in `kernels`) is compiled.
+    auto compile = [&](const TraceKernelCache::Kernel& k) {
+        if (k.compiled) return 0.0;
         const auto compileStart = Clock::now();
         p.tile = glm::uvec4(0u);
         std::memcpy(params.mapped(), &p, sizeof(p));
-        device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, 1, 1); });
+        device.submitAndWait([&](VkCommandBuffer commands) { k.pipeline.record(commands, 1, 1); });
+        k.compiled = true;
         return secondsSince(compileStart);
     };
     stats.addPhase("compile", compile(firstPass));
 
-    // Built when a first dispatch gives up a pixel: most scenes never need it.
-    std::optional<ComputePipeline> resumable;
+    // Taken when a first dispatch gives up a pixel: most scenes never need it.
+    const ComputePipeline* resumable = nullptr;
     double resumableSeconds = 0;
     // A tile at the image's right or bottom edge may be cut off: only the workgroups over its part
     // inside the image are dispatched.
@@ -201,13 +205,15 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
         for (std::uint32_t tx = 0; tx < tilesX; ++tx) {
             const glm::uvec4 tile(tx * tileWidth, ty * tileHeight, tileWidth, tileHeight);
             p.tile = tile;
-            const std::uint32_t givenUp = persistent ? dispatchPersistent(firstPass) : dispatch(firstPass);
+            const std::uint32_t givenUp =
+                persistent ? dispatchPersistent(firstPass.pipeline) : dispatch(firstPass.pipeline);
             stats.restartedPixels += givenUp;
             if (givenUp > 0 && !resumable) {
                 const auto buildStart = Clock::now();
-                resumable.emplace(makeTracePipeline(device, kernel, true, sums));
-                resumable->bind(bound);
-                compile(*resumable);
+                const TraceKernelCache::Kernel k = kernels.get(device, kernel, true, sums);
+                k.pipeline.bind(bound);
+                compile(k);
+                resumable = &k.pipeline;
                 resumableSeconds = secondsSince(buildStart);
                 p.tile = tile;
             }

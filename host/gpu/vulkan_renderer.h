@@ -15,6 +15,8 @@
 
 namespace vitrum {
 
+class TraceKernelCache;
+
 // The smallest iteration budget with which every dispatch moves each SIMD group on (a node
 // visited, a triangle tested or a traversal finished and shaded): the triangle loop of a
 // traversal resumed inside a leaf starts after three counted steps (the round's, the traversal
@@ -39,6 +41,9 @@ struct VulkanRenderOptions {
     // of work until none is left, so that the CPU's threads share the work however fast each runs.
     // The same image and statistics either way (but the dispatches).
     bool persistentSubgroups = true;
+    // Kernels kept from earlier renders on this device (gpu/trace_kernel_cache.h): each is created
+    // and compiled once. Null: this render creates its own and drops them at the end.
+    TraceKernelCache* kernels = nullptr;
     std::function<void(double)> progress;  // fraction done
 };
 

@@ -35,7 +35,7 @@ TraceSpecialization TraceSpecialization::forScene(const Scene& scene, const Scen
     return s;
 }
 
-std::array<std::uint32_t, 11> TraceSpecialization::constants() const {
+std::array<std::uint32_t, TraceSpecialization::kConstantCount> TraceSpecialization::constants() const {
     return {materialModels,
             shadowRays ? 1u : 0u,
             absorption ? 1u : 0u,

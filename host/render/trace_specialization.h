@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -37,7 +38,8 @@ struct TraceSpecialization {
     static TraceSpecialization forScene(const Scene& scene, const SceneFeatures& features);
 
     // The constants in constant_id order, as VkSpecializationInfo reads them.
-    std::array<std::uint32_t, 11> constants() const;
+    static constexpr std::size_t kConstantCount = 11;
+    std::array<std::uint32_t, kConstantCount> constants() const;
     std::vector<std::string> describe() const;  // one line a setting, for `vitrum info`
 };
 
