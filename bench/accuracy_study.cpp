@@ -34,6 +34,7 @@
 #include "study/pareto.h"
 #include "study/study_settings.h"
 #include "study/svg_plot.h"
+#include "study/time_difference.h"
 
 namespace vitrum::study {
 namespace {
@@ -77,6 +78,7 @@ struct Measured {
     // drift between one setting's renders and another's falls on both sides of a ratio alike.
     std::optional<double> vsDefault;
     double vsDefaultLow = 0, vsDefaultHigh = 0;
+    bool vsDefaultMeasured = false;  // study/time_difference.h
     RenderStats stats;
 };
 
@@ -88,9 +90,12 @@ struct Error {
 Error compare(const Image& image, const Image& reference) { return {diffImages(image, reference), meanSsim(image, reference)}; }
 
 // How many runs: at least `runs`, more for short renders (see kTimedSeconds), one for long ones.
-int runsFor(double firstSeconds, int runs) {
+// Runs paired with the default's are at least as many as the sign test needs to call a
+// difference measured (study/time_difference.h).
+int runsFor(double firstSeconds, int runs, bool paired) {
     if (runs == 1 || firstSeconds > kTimeOnceSeconds) return 1;  // --runs 1: one of each, for a quick look
-    return std::clamp(int(std::ceil(kTimedSeconds / std::max(firstSeconds, 1e-3))), runs, std::max(runs, kMaxRuns));
+    const int least = paired ? std::max(runs, kMinPairsToMeasure) : runs;
+    return std::clamp(int(std::ceil(kTimedSeconds / std::max(firstSeconds, 1e-3))), least, std::max(least, kMaxRuns));
 }
 
 using RenderOnce = std::function<Image(RenderStats&)>;
@@ -116,7 +121,7 @@ Measured measure(int runs, const RenderOnce& render, const RenderOnce* pairedDef
         if (run == 0) m.compile = stats.seconds("pipeline") + stats.seconds("compile");
         times.push_back(stats.seconds("render"));
         if (pairedDefault && defaultSeconds > 0) ratios.push_back(times.back() / defaultSeconds);
-        if (run == 0) wanted = runsFor(times.back(), runs);
+        if (run == 0) wanted = runsFor(times.back(), runs, pairedDefault != nullptr);
         m.stats = stats;
         m.image = std::move(image);
     }
@@ -127,6 +132,7 @@ Measured measure(int runs, const RenderOnce& render, const RenderOnce* pairedDef
         m.vsDefault = bench::median(ratios);
         m.vsDefaultLow = bench::quantile(ratios, 0.25);
         m.vsDefaultHigh = bench::quantile(ratios, 0.75);
+        m.vsDefaultMeasured = differenceMeasured(ratios);
     }
     return m;
 }
@@ -167,21 +173,22 @@ std::string percent(double share) { return bench::fixed(100.0 * share, share < 0
 std::string psnrText(double psnr) { return std::isinf(psnr) ? "inf" : bench::fixed(psnr, 1); }
 
 // A time against another: the ratio, and where there is one, the middle half of the ratios of
-// the runs taken in turns with the default's.
+// the runs taken in turns with the default's and whether they measure a difference
+// (study/time_difference.h).
 struct TimeRatio {
     double ratio = 1;
     std::optional<std::pair<double, double>> middleHalf;  // of the paired runs' ratios
+    bool measured = true;
 };
 
-// "+12% time" / "-30% time" / "4.1x the time"; not a measured difference when the middle half of
-// the paired runs' ratios contains 1.
+// "+12% time" / "-30% time" / "4.1x the time", with the middle half of the paired runs' ratios
+// when they do not measure a difference.
 std::string timeChange(const TimeRatio& t) {
-    if (t.ratio >= 2.0) return bench::fixed(t.ratio, 1) + "x the time";
-    const std::string change = (t.ratio >= 1 ? "+" : "") + bench::fixed(100.0 * (t.ratio - 1.0), 0) + "% time";
-    if (t.middleHalf && t.middleHalf->first <= 1.0 && 1.0 <= t.middleHalf->second)
-        return change + " (not measured: the middle half of its runs took " + bench::fixed(t.middleHalf->first, 2) + "-" +
-               bench::fixed(t.middleHalf->second, 2) + "x the default's time)";
-    return change;
+    const std::string change = t.ratio >= 2.0 ? bench::fixed(t.ratio, 1) + "x the time"
+                                              : (t.ratio >= 1 ? "+" : "") + bench::fixed(100.0 * (t.ratio - 1.0), 0) + "% time";
+    if (t.measured || !t.middleHalf) return change;
+    return change + " (not measured: the middle half of its runs took " + bench::fixed(t.middleHalf->first, 2) + "-" +
+           bench::fixed(t.middleHalf->second, 2) + "x the default's time)";
 }
 
 // "removes 80% of the error (RMSE 0.0123 -> 0.0025)"; "adds ..." when it grows.
@@ -249,7 +256,8 @@ double judgedError(const Row& r) { return r.approximation ? r.approximation->dif
 // rows), else the ratio of the two medians (the default itself, CPU rows).
 TimeRatio vsDefault(const Row& r, const Row& base) {
     if (!r.measured.vsDefault) return {r.measured.seconds / base.measured.seconds, std::nullopt};
-    return {*r.measured.vsDefault, std::make_pair(r.measured.vsDefaultLow, r.measured.vsDefaultHigh)};
+    return {*r.measured.vsDefault, std::make_pair(r.measured.vsDefaultLow, r.measured.vsDefaultHigh),
+            r.measured.vsDefaultMeasured};
 }
 
 SceneStudy studyScene(VulkanDevice& device, const std::string& file, const Options& options,
@@ -378,7 +386,7 @@ std::string sceneSentences(const SceneStudy& s) {
     const Row* d4 = find(s, "depth 4");
     if (d4) {
         const Row* d10 = find(s, "depth 10");
-        t << "- depth 10 instead of 4: " << timeChange({vsDefault(*d10, base).ratio / vsDefault(*d4, base).ratio, std::nullopt}) << ", "
+        t << "- depth 10 instead of 4: " << timeChange({vsDefault(*d10, base).ratio / vsDefault(*d4, base).ratio, std::nullopt, true}) << ", "
           << errorChange(judgedError(*d4), judgedError(*d10)) << ".\n";
     }
     line("depth 16 instead of 10", find(s, "depth 16"), false);
@@ -526,8 +534,11 @@ int run(int argc, char** argv) {
           "was empty when the study started (a kernel another setting already built comes from the cache). CPU rows "
           "run the reference renderer on all hardware threads. Each GPU setting's renders take turns with as many renders of the "
           "default setting, and its time against the default's (`vs default`, the sentences) is the median of those pairs' ratios: "
-          "the machine's drift over the minutes between two settings falls on both alike. A difference is called not measured "
-          "when the middle half of its pairs' ratios contains 1.\n\n"
+          "the machine's drift over the minutes between two settings falls on both alike. A difference is called measured when "
+          "its pairs' ratios lean to one side of 1 so far that chance would do it less than one time in 20 (an exact "
+          "two-sided sign test; at least 6 of 6 pairs, or 12 of 15), or when every pair's ratio is beyond 2x either way "
+          "(a render timed once); paired settings get at least 6 pairs unless timed once. Otherwise it is called not "
+          "measured, and the middle half of its pairs' ratios is given.\n\n"
        << "## Ground truth\n\n"
        << "The CPU reference in double precision with exact Fresnel and bilinear filtering, `max_depth` " << kTruthDepth
        << " and a weight cut-off of " << kTruthMinWeight << ", one sample at each pixel centre: the same sample "

@@ -13,6 +13,7 @@
 
 #include "bench_support.h"
 #include "study/pareto.h"
+#include "study/time_difference.h"
 
 namespace vitrum::study {
 namespace {
@@ -44,6 +45,43 @@ TEST(Quantile, InterpolatesBetweenOrderStatisticsWhateverTheOrder) {
     EXPECT_DOUBLE_EQ(bench::quantile({}, 0.5), 0.0);
     const std::vector<double> steadyButOneSlow = {10, 10, 10, 11, 11, 11, 11, 12, 12, 12, 12, 13, 13, 13, 30};
     EXPECT_LE(bench::quantile(steadyButOneSlow, 0.75) - bench::quantile(steadyButOneSlow, 0.25), 2.0);
+}
+
+// Binomial tails worked out by hand: all of n pairs on one side has the chance 2 / 2^n; 12 or
+// more of 15 on one side 2 (C(15,12) + C(15,13) + C(15,14) + C(15,15)) / 2^15 = 1152 / 32768.
+TEST(SignTest, TwoSidedBinomialTails) {
+    EXPECT_DOUBLE_EQ(signTestP(0, 0), 1.0);
+    EXPECT_NEAR(signTestP(5, 0), 2.0 / 32.0, 1e-12);
+    EXPECT_NEAR(signTestP(0, 6), 2.0 / 64.0, 1e-12);
+    EXPECT_NEAR(signTestP(12, 3), 1152.0 / 32768.0, 1e-12);
+    EXPECT_NEAR(signTestP(3, 12), 1152.0 / 32768.0, 1e-12);
+    EXPECT_NEAR(signTestP(11, 4), 2.0 * (1365.0 + 455.0 + 105.0 + 15.0 + 1.0) / 32768.0, 1e-12);
+    EXPECT_DOUBLE_EQ(signTestP(3, 3), 1.0);  // the two tails overlap: capped at 1
+}
+
+// Five pairs that all lean one way happen by chance one time in 16: not measured; six, one in 32:
+// measured. Ratios of 1 count for neither side; pairs that all differ by 2x or more are measured
+// at once (a render timed once, many times the default's); a mix of both sides is not.
+TEST(SignTest, WhenTheStudyCallsADifferenceMeasured) {
+    EXPECT_FALSE(differenceMeasured({}));
+    EXPECT_FALSE(differenceMeasured({1.10, 1.20, 1.05, 1.30, 1.15}));
+    EXPECT_TRUE(differenceMeasured({1.10, 1.20, 1.05, 1.30, 1.15, 1.02}));
+    EXPECT_FALSE(differenceMeasured({1.10, 1.20, 1.05, 1.30, 1.15, 1.0}));
+    EXPECT_TRUE(differenceMeasured({0.8, 0.9, 0.7, 0.95, 0.85, 0.9}));
+    EXPECT_FALSE(differenceMeasured({0.9, 1.1, 1.2, 0.95, 1.05, 1.02}));
+    EXPECT_TRUE(differenceMeasured({26.7}));
+    EXPECT_TRUE(differenceMeasured({0.4, 0.45}));
+    EXPECT_FALSE(differenceMeasured({1.9}));
+    EXPECT_FALSE(differenceMeasured({2.5, 1.5}));
+    // 12 of 15 on one side: p = 0.035; 11 of 15: p = 0.118.
+    std::vector<double> ratios(12, 1.01);
+    ratios.insert(ratios.end(), 3, 0.99);
+    EXPECT_TRUE(differenceMeasured(ratios));
+    ratios[0] = 0.99;
+    EXPECT_FALSE(differenceMeasured(ratios));
+    EXPECT_EQ(kMinPairsToMeasure, 6);
+    EXPECT_GE(signTestP(kMinPairsToMeasure - 1, 0), kSignificance);
+    EXPECT_LT(signTestP(kMinPairsToMeasure, 0), kSignificance);
 }
 
 std::string read(const fs::path& path) {
