@@ -29,8 +29,8 @@
 #include "bvh/bvh.h"
 #include "bvh/bvh_traversal.h"
 #include "cpu/reference_renderer.h"
-#include "gpu/vulkan_device.h"
 #include "gpu/trace_kernel_cache.h"
+#include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
 #include "scene/scene_loader.h"
 
