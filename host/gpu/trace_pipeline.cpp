@@ -66,8 +66,10 @@ ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecial
         .dataSize = sizeof(constants),
         .pData = constants.data(),
     };
+    // Full subgroups are asked for exactly when the kernel is told it has them (kFullSubgroups).
+    const bool fullSubgroups = constants[TraceSpecialization::kConstantCount + 1] != 0u;
     return ComputePipeline(device, traceKernelCode(sums), bindings, &info,
-                           sums == StatisticsSums::shuffles ? VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT_EXT : 0);
+                           fullSubgroups ? VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT_EXT : 0);
 }
 
 }  // namespace vitrum
