@@ -32,6 +32,7 @@
 #include "scene/scene_loader.h"
 #include "scene/scene_names.h"
 #include "study/pareto.h"
+#include "study/run_count.h"
 #include "study/study_settings.h"
 #include "study/svg_plot.h"
 #include "study/time_difference.h"
@@ -50,13 +51,6 @@ const char* kDefaultScenes[] = {
     "scenes/diamond.json",                      // IOR 2.42: where Schlick is visibly wrong
 };
 
-// A render longer than this is timed once: its run-to-run noise is small against its length.
-// Shorter ones are repeated until they have filled about kTimedSeconds, up to kMaxRuns times:
-// lavapipe's run-to-run noise on a 2-core machine is 10-30% for a render of 0.1 s, and a render
-// of 10 ms at the study's size now and then takes twice as long (the hypervisor takes a CPU).
-constexpr double kTimeOnceSeconds = 3.0;
-constexpr double kTimedSeconds = 1.2;
-constexpr int kMaxRuns = 15;
 constexpr float kHeatMapFullScale = 0.05f;
 
 struct Options {
@@ -88,15 +82,6 @@ struct Error {
 };
 
 Error compare(const Image& image, const Image& reference) { return {diffImages(image, reference), meanSsim(image, reference)}; }
-
-// How many runs: at least `runs`, more for short renders (see kTimedSeconds), one for long ones.
-// Runs paired with the default's are at least as many as the sign test needs to call a
-// difference measured (study/time_difference.h).
-int runsFor(double firstSeconds, int runs, bool paired) {
-    if (runs == 1 || firstSeconds > kTimeOnceSeconds) return 1;  // --runs 1: one of each, for a quick look
-    const int least = paired ? std::max(runs, kMinPairsToMeasure) : runs;
-    return std::clamp(int(std::ceil(kTimedSeconds / std::max(firstSeconds, 1e-3))), least, std::max(least, kMaxRuns));
-}
 
 using RenderOnce = std::function<Image(RenderStats&)>;
 

@@ -13,6 +13,7 @@
 
 #include "bench_support.h"
 #include "study/pareto.h"
+#include "study/run_count.h"
 #include "study/time_difference.h"
 
 namespace vitrum::study {
@@ -82,6 +83,23 @@ TEST(SignTest, WhenTheStudyCallsADifferenceMeasured) {
     EXPECT_EQ(kMinPairsToMeasure, 6);
     EXPECT_GE(signTestP(kMinPairsToMeasure - 1, 0), kSignificance);
     EXPECT_LT(signTestP(kMinPairsToMeasure, 0), kSignificance);
+}
+
+// The study's rule for how often to render a setting: renders that fill about 1.2 s, at least as
+// many as asked and at most 15; one for a render over 3 s or for --runs 1; and settings paired
+// with the default at least the 6 pairs the sign test needs (all 6 on one side: p = 1/32).
+TEST(RunCount, EnoughRendersToTimeAndEnoughPairsToMeasure) {
+    EXPECT_EQ(runsFor(0.1, 3, false), 12);   // 12 x 0.1 s fill 1.2 s
+    EXPECT_EQ(runsFor(0.25, 3, false), 5);   // 4.8, rounded up
+    EXPECT_EQ(runsFor(0.5, 3, false), 3);    // 2.4 renders would do; never fewer than asked
+    EXPECT_EQ(runsFor(0.5, 3, true), 6);     // paired: as many as the sign test needs
+    EXPECT_EQ(runsFor(0.1, 3, true), 12);    // already more than 6
+    EXPECT_EQ(runsFor(0.001, 3, false), 15);  // capped
+    EXPECT_EQ(runsFor(0.0, 3, true), 15);    // a zero time does not divide by zero
+    EXPECT_EQ(runsFor(0.1, 20, false), 20);  // asked for more than the cap: the cap gives way
+    EXPECT_EQ(runsFor(2.9, 3, true), 6);
+    EXPECT_EQ(runsFor(3.1, 3, true), 1);     // long: timed once, judged by the 2x rule
+    EXPECT_EQ(runsFor(0.1, 1, true), 1);     // --runs 1: a quick look
 }
 
 std::string read(const fs::path& path) {
