@@ -21,11 +21,13 @@ Scene smallScene(const std::string& file) {
 }
 
 Render render(const Scene& scene, TraceKernelCache* kernels,
-              std::uint32_t budget = VulkanRenderOptions{}.iterationBudget) {
+              std::uint32_t budget = VulkanRenderOptions{}.iterationBudget,
+              std::uint32_t tileSize = VulkanRenderOptions{}.tileSize) {
     Render r;
     const std::uint32_t before = testDevice().validationMessages();
     r.image = renderVulkan(testDevice(), scene, buildBvh(scene.triangles),
-                           VulkanRenderOptions{.iterationBudget = budget, .kernels = kernels}, r.stats);
+                           VulkanRenderOptions{.iterationBudget = budget, .tileSize = tileSize, .kernels = kernels},
+                           r.stats);
     EXPECT_EQ(testDevice().validationMessages(), before) << "Vulkan validation messages while rendering";
     return r;
 }
@@ -99,7 +101,23 @@ TEST(TraceKernelCache, DropsTheKernelUsedLeastRecently) {
     EXPECT_GT(diamondAgain.stats.seconds("compile"), 0.0);
 }
 
-TEST(TraceKernelCache, HoldsTheTwoKernelsOfARender) { EXPECT_THROW(TraceKernelCache(1), std::logic_error); }
+// A render that takes two kernels from a full cache of two: its resumable kernel drops the other
+// scene's kernel, never the first-dispatch kernel that the render's later tiles still dispatch
+// (tiles of 8 pixels: a dropped kernel in use would be a destroyed pipeline, validation errors or
+// a crash, and another image).
+TEST(TraceKernelCache, HoldsTheTwoKernelsOfARender) {
+    EXPECT_THROW(TraceKernelCache(1), std::logic_error);
+    const Scene demo = smallScene("scenes/demo.json");
+    const Scene diamond = smallScene("scenes/diamond.json");
+    const Render diamondOwn = render(diamond, nullptr, 400, 8);
+    ASSERT_GT(diamondOwn.stats.restartedPixels, 0u) << "the budget no longer gives up pixels";
+    TraceKernelCache kernels(2);
+    render(demo, &kernels);
+    const Render diamondKept = render(diamond, &kernels, 400, 8);
+    EXPECT_EQ(kernels.created(), 3u);
+    EXPECT_EQ(kernels.size(), 2u);
+    expectSameRender(diamondKept, diamondOwn, "diamond at a budget of 400, two kernels in a cache of two");
+}
 
 }  // namespace
 }  // namespace vitrum::testing
