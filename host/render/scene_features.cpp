@@ -69,7 +69,10 @@ std::uint32_t countOpenGlassObjects(const Scene& scene) {
         for (int i = 0; i < 3; ++i) objectEdges[edge(t.position[i], t.position[(i + 1) % 3])] += 1;
     }
     std::uint32_t open = 0;
-    for (const auto& [object, objectEdges] : edges) {
+    for (const auto& objectAndEdges : edges) {
+        // Not a structured binding: C++20 lets a lambda capture one, but clang only from version
+        // 16 on, and the fuzz build's clang is Debian 12's 14.
+        const auto& objectEdges = objectAndEdges.second;
         const bool closed = std::all_of(objectEdges.begin(), objectEdges.end(), [&](const auto& entry) {
             const Edge reverse = reversed(entry.first);
             const auto found = objectEdges.find(reverse);
