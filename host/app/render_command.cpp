@@ -26,8 +26,8 @@ namespace {
 
 const char* kRenderHelp = R"(usage: vitrum render SCENE -o OUT [options]
 
-Renders SCENE (a .json scene file or a bare .obj) and writes OUT: .png (8-bit sRGB), .pfm or
-.hdr (linear). Options override the scene's own settings.
+Renders SCENE (a .json scene file or a bare .obj) and writes OUT: .png (8-bit sRGB), .pfm,
+.hdr or .exr (linear). Options override the scene's own settings.
 
   -o, --output FILE        the image to write (required)
   --backend vulkan|cpu     Vulkan compute (default) or the CPU reference renderer
@@ -140,9 +140,9 @@ RenderCommand parse(int argc, char** argv, int first) {
         else throw InputError("more than one scene given: \"" + c.scenePath + "\" and \"" + flag + "\"");
     }
     if (c.scenePath.empty()) throw InputError("no scene given (see vitrum render --help)");
-    if (c.outputPath.empty()) throw InputError("no output given: add -o OUT.png (or .pfm, .hdr)");
-    if (!hasExtension(c.outputPath, {".png", ".pfm", ".hdr"}))
-        throw InputError(c.outputPath + ": the output must end in .png, .pfm or .hdr");
+    if (c.outputPath.empty()) throw InputError("no output given: add -o OUT.png (or .pfm, .hdr, .exr)");
+    if (!hasExtension(c.outputPath, {".png", ".pfm", ".hdr", ".exr"}))
+        throw InputError(c.outputPath + ": the output must end in .png, .pfm, .hdr or .exr");
     for (const std::string& out : {c.outputPath, c.statsPath}) {
         // Fail before any long work when the output cannot be written where asked.
         if (out.empty()) continue;

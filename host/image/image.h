@@ -1,5 +1,5 @@
-// An image in linear RGB float, row 0 at the top, and its files: PNG (sRGB, 8 bit), PFM and
-// Radiance HDR (linear) by extension. Writing is all-or-nothing: a temporary file renamed into
+// An image in linear RGB float, row 0 at the top, and its files: PNG (sRGB, 8 bit), PFM, Radiance
+// HDR and OpenEXR (linear) by extension. Writing is all-or-nothing: a temporary file renamed into
 // place, so a failure never leaves a half-written output.
 #pragma once
 
@@ -25,7 +25,7 @@ struct Image {
 // Throws InputError for an unknown extension or a file that cannot be written.
 void writeImage(const Image& image, const std::filesystem::path& path);
 
-// PNG/JPEG/BMP/TGA are decoded from sRGB to linear; .hdr and .pfm are linear already.
+// PNG/JPEG/BMP/TGA are decoded from sRGB to linear; .hdr, .pfm and .exr are linear already.
 // Throws InputError naming the file for a missing, corrupt or unsupported file.
 Image readImage(const std::filesystem::path& path);
 

@@ -1,6 +1,7 @@
 // Reading and writing images: PNG and the other 8-bit formats through stb (sRGB), Radiance HDR through
-// stb (linear), PFM by hand (linear). Writes go to a temporary file next to the target that is renamed
-// into place, so a failed write never leaves a partial output behind.
+// stb (linear), PFM by hand (linear), OpenEXR through its library (linear, openexr_file.h). Writes
+// go to a temporary file next to the target that is renamed into place, so a failed write never
+// leaves a partial output behind.
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,6 +21,7 @@
 
 #include "common/error.h"
 #include "image/image.h"
+#include "image/openexr_file.h"
 #include "image/srgb.h"
 
 namespace vitrum {
@@ -266,6 +268,12 @@ bool writeHdr(const Image& image, const fs::path& file) {
     return stbi_write_hdr(file.string().c_str(), int(image.width), int(image.height), 3, data.data()) != 0;
 }
 
+// The OpenEXR library reports a failure by an exception, which writeImage turns into its message.
+bool writeExr(const Image& image, const fs::path& file) {
+    writeOpenExr(image, file);
+    return true;
+}
+
 }  // namespace
 
 void writeImage(const Image& image, const fs::path& path) {
@@ -277,8 +285,10 @@ void writeImage(const Image& image, const fs::path& path) {
         writer = writePfm;
     } else if (ext == ".hdr") {
         writer = writeHdr;
+    } else if (ext == ".exr") {
+        writer = writeExr;
     } else {
-        throw inputError(path, 0, "unknown image format '" + ext + "' (use .png, .pfm or .hdr)");
+        throw inputError(path, 0, "unknown image format '" + ext + "' (use .png, .pfm, .hdr or .exr)");
     }
     if (image.width == 0 || image.height == 0 || image.pixels.size() != std::size_t(image.width) * image.height) {
         throw inputError(path, 0, "cannot write an empty or malformed image (" + std::to_string(image.width) + "x" +
@@ -295,11 +305,14 @@ void writeImage(const Image& image, const fs::path& path) {
 
     const fs::path temporary = fs::path(path.string() + ".tmp-" + std::to_string(::getpid()));
     errno = 0;
-    const bool written = writer(image, temporary);
-    const int writeErrno = errno;
-    if (!written) {
+    std::string reason;
+    try {
+        if (!writer(image, temporary)) reason = errno ? std::strerror(errno) : "write failed";
+    } catch (const std::exception& e) {
+        reason = e.what();
+    }
+    if (!reason.empty()) {
         fs::remove(temporary, ec);
-        std::string reason = writeErrno ? std::strerror(writeErrno) : "write failed";
         throw inputError(path, 0, "cannot write image: " + reason);
     }
     fs::rename(temporary, path, ec);
@@ -315,10 +328,8 @@ Image readImage(const fs::path& path) {
     if (!fs::exists(path, ec)) throw inputError(path, 0, "image file not found");
     if (fs::is_directory(path, ec)) throw inputError(path, 0, "expected an image file, got a directory");
     const std::string ext = lowerExtension(path);
-    if (ext == ".exr") {
-        throw inputError(path, 0, "OpenEXR is not supported; convert the image to .hdr or .pfm");
-    }
     if (ext == ".pfm") return readPfm(path);
+    if (ext == ".exr") return readOpenExr(path);
     // Decide by content between linear Radiance HDR and sRGB 8/16-bit images, so a misnamed
     // .hdr is never gamma-converted by stb (and a .hdr that is not one is reported).
     const bool isHdr = stbi_is_hdr(path.string().c_str()) != 0;

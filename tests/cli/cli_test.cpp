@@ -1,5 +1,6 @@
 // The `vitrum` command as a user runs it: exit codes, messages that name the file, no output
 // left behind on failure, and the two backends agreeing through the command line.
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -45,6 +46,25 @@ TEST_F(Cli, GeosphereRendersTheSameOnBothBackends) {
     EXPECT_EQ(diff.exitCode, 0) << diff.output;
     EXPECT_NE(diff.output.find("psnr"), std::string::npos);
     EXPECT_TRUE(fs::exists(path("heat.png")));
+}
+
+// OpenEXR output holds the render's linear floats, as PFM does: the two files read back the same,
+// and `vitrum diff` reads both.
+TEST_F(Cli, ExrOutputHoldsTheSameValuesAsPfm) {
+    std::string common = "render " + kGeosphere + " --camera-from 3,-3,1 --camera-at 0,0,0 --width 24 --height 18 --backend cpu";
+    ASSERT_EQ(vitrum(common + " -o " + path("out.exr")).exitCode, 0);
+    ASSERT_EQ(vitrum(common + " -o " + path("out.pfm")).exitCode, 0);
+    const vitrum::Image exr = vitrum::readImage(path("out.exr"));
+    const vitrum::Image pfm = vitrum::readImage(path("out.pfm"));
+    ASSERT_EQ(exr.width, 24u);
+    ASSERT_EQ(exr.height, 18u);
+    EXPECT_EQ(exr.pixels, pfm.pixels);
+    float largest = 0.0f;
+    for (const glm::vec3& p : exr.pixels) largest = std::max({largest, p.r, p.g, p.b});
+    EXPECT_GT(largest, 0.1f);  // the geosphere is lit, not a black image
+    CommandRun diff = vitrum("diff " + path("out.exr") + " " + path("out.pfm"));
+    EXPECT_EQ(diff.exitCode, 0) << diff.output;
+    EXPECT_NE(diff.output.find("rmse: 0\n"), std::string::npos) << diff.output;
 }
 
 TEST_F(Cli, MissingSceneIsAnErrorNamingTheFile) {

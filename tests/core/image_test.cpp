@@ -1,6 +1,4 @@
-// Image files (PNG, PFM, HDR), their failure modes, the image comparison and the sRGB curve.
-#include <unistd.h>
-
+// Image files (PNG, PFM, HDR; OpenEXR in openexr_file_test.cpp), their failure modes, the image comparison and the sRGB curve.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -21,24 +19,15 @@
 #include "image/image_diff.h"
 #include "image/srgb.h"
 
+#include "../support/temporary_folder_test.h"
+
 namespace vitrum {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ImageIoTest : public ::testing::Test {
+class ImageIoTest : public testing::TemporaryFolderTest {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("vitrum_image_test_" + std::to_string(::getpid()) + "_" + std::string(info->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
     // Number of entries in the test directory (temporary files included).
     int entryCount() const {
         int n = 0;
@@ -49,7 +38,6 @@ protected:
         std::ofstream out(path, std::ios::binary);
         out.write(bytes.data(), std::streamsize(bytes.size()));
     }
-    fs::path dir_;
 };
 
 // A gradient over the whole [0, 1] range, different in each channel, plus a few out-of-range values.
@@ -98,18 +86,22 @@ TEST_F(ImageIoTest, PngRoundTripWithinQuantisation) {
     }
 }
 
-TEST_F(ImageIoTest, PfmRoundTripIsExact) {
+// PFM and OpenEXR keep 32-bit floats: negative, tiny and huge (beyond half floats) values alike.
+TEST_F(ImageIoTest, FloatFormatsRoundTripExactly) {
     Image image(7, 3);
     std::mt19937 rng(42);
     std::uniform_real_distribution<float> dist(-3.0f, 1000.0f);
     for (auto& p : image.pixels) p = glm::vec3(dist(rng), dist(rng), dist(rng));
     image.at(1, 1) = glm::vec3(1e-30f, 0.0f, 65504.0f);
-    const fs::path path = dir_ / "exact.PFM";  // extension is case-insensitive
-    writeImage(image, path);
-    const Image read = readImage(path);
-    ASSERT_EQ(read.width, 7u);
-    ASSERT_EQ(read.height, 3u);
-    for (std::size_t i = 0; i < image.pixels.size(); ++i) EXPECT_EQ(read.pixels[i], image.pixels[i]) << i;
+    image.at(2, 1) = glm::vec3(-0.0f, 1e30f, 1.0f / 3.0f);
+    for (const char* name : {"exact.PFM", "exact.EXR"}) {  // the extension is case-insensitive
+        const fs::path path = dir_ / name;
+        writeImage(image, path);
+        const Image read = readImage(path);
+        ASSERT_EQ(read.width, 7u) << name;
+        ASSERT_EQ(read.height, 3u) << name;
+        for (std::size_t i = 0; i < image.pixels.size(); ++i) EXPECT_EQ(read.pixels[i], image.pixels[i]) << name << " " << i;
+    }
 }
 
 TEST_F(ImageIoTest, PfmWrittenLittleEndianBottomUp) {
@@ -201,14 +193,6 @@ TEST_F(ImageIoTest, CourseImagesLoad) {
     EXPECT_GT(largest, 0.0f);
 }
 
-TEST_F(ImageIoTest, ExrIsNotSupported) {
-    const fs::path path = fs::path(VITRUM_SHARED_DIR) / "scenes/course/images/test.exr";
-    ASSERT_TRUE(fs::exists(path));
-    const std::string message = exceptionMessage([&] { readImage(path); });
-    EXPECT_NE(message.find("OpenEXR is not supported"), std::string::npos) << message;
-    EXPECT_NE(message.find("test.exr"), std::string::npos) << message;
-}
-
 TEST_F(ImageIoTest, CorruptFileIsInputError) {
     std::mt19937 rng(7);
     std::string bytes;
@@ -237,7 +221,7 @@ TEST_F(ImageIoTest, MissingFileNamesThePath) {
 
 TEST_F(ImageIoTest, UnknownExtensionWritesNothing) {
     const Image image = gradient(4, 4);
-    for (const char* name : {"out.xyz", "out.exr", "no_extension"}) {
+    for (const char* name : {"out.xyz", "out.jpg", "no_extension"}) {
         const fs::path path = dir_ / name;
         const std::string message = exceptionMessage([&] { writeImage(image, path); });
         EXPECT_NE(message.find(path.string()), std::string::npos) << message;
@@ -248,7 +232,7 @@ TEST_F(ImageIoTest, UnknownExtensionWritesNothing) {
 
 TEST_F(ImageIoTest, FailedWriteLeavesNoFile) {
     const Image image = gradient(4, 4);
-    for (const char* name : {"missing_dir/out.png", "missing_dir/out.pfm", "missing_dir/out.hdr"}) {
+    for (const char* name : {"missing_dir/out.png", "missing_dir/out.pfm", "missing_dir/out.hdr", "missing_dir/out.exr"}) {
         const fs::path path = dir_ / name;
         const std::string message = exceptionMessage([&] { writeImage(image, path); });
         EXPECT_NE(message.find(path.string()), std::string::npos) << message;
@@ -275,7 +259,7 @@ TEST_F(ImageIoTest, NonFiniteWrittenAsZero) {
     Image image(2, 1);
     image.at(0, 0) = glm::vec3(std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN(), 1.0f);
     image.at(1, 0) = glm::vec3(-std::numeric_limits<float>::infinity(), 2.0f, 3.0f);
-    for (const char* name : {"nan.pfm", "nan.hdr"}) {
+    for (const char* name : {"nan.pfm", "nan.hdr", "nan.exr"}) {
         const fs::path path = dir_ / name;
         writeImage(image, path);
         const Image read = readImage(path);

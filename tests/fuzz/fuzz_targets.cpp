@@ -104,6 +104,8 @@ int fuzzImage(const std::uint8_t* data, std::size_t size) {
         name = "fuzz.pfm";
     else if (bytes.starts_with("#?"))
         name = "fuzz.hdr";
+    else if (bytes.starts_with(std::string_view("\x76\x2f\x31\x01", 4)))  // OpenEXR's magic number
+        name = "fuzz.exr";
     fs::path file = writeFile(name, bytes);
     try {
         readImage(file);

@@ -22,7 +22,8 @@ int fuzzObjMtl(const std::uint8_t* data, std::size_t size);
 int fuzzSceneJson(const std::uint8_t* data, std::size_t size);
 
 // An image file for readImage(): named .pfm when it starts with "PF" or "Pf", .hdr when it starts
-// with "#?", else .png (stb decides the format by content: PNG, JPEG, BMP, TGA, GIF, PSD, PNM).
+// with "#?", .exr when it starts with OpenEXR's magic number, else .png (stb decides the format by
+// content: PNG, JPEG, BMP, TGA, GIF, PSD, PNM).
 int fuzzImage(const std::uint8_t* data, std::size_t size);
 
 struct FuzzTarget {

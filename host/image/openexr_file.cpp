@@ -1,0 +1,184 @@
+#include "image/openexr_file.h"
+
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include <Imath/ImathBox.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfCompression.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfRgbaFile.h>
+#include <OpenEXR/openexr.h>
+
+#include "common/error.h"
+
+namespace vitrum {
+namespace {
+
+namespace fs = std::filesystem;
+
+// As for the other formats (image_io.cpp): at most 16384 pixels on a side, and at most 8192
+// pixels a byte of file beyond the first 2^20, so that a forged header cannot make the reader
+// allocate gigabytes for a file of a few bytes.
+constexpr std::int64_t kLargestSide = 16384;
+constexpr std::int64_t kPixelsPerByte = 8192;
+
+std::int64_t width(const Imath::Box2i& box) { return std::int64_t(box.max.x) - box.min.x + 1; }
+std::int64_t height(const Imath::Box2i& box) { return std::int64_t(box.max.y) - box.min.y + 1; }
+
+// The last message of the OpenEXR core library's header parse (it prints to stderr without a handler).
+thread_local std::string gCoreMessage;
+
+void keepCoreMessage(exr_const_context_t, exr_result_t, const char* message) { gCoreMessage = message ? message : ""; }
+
+Imath::Box2i box(const exr_attr_box2i_t& b) {
+    return Imath::Box2i(Imath::V2i(b.min.x, b.min.y), Imath::V2i(b.max.x, b.max.y));
+}
+
+// The first part's display and data windows, checked from its header alone: the library's image
+// readers allocate for the windows (line buffers, chunk tables) as they open the file.
+void checkWindows(const fs::path& path) {
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = keepCoreMessage;
+    gCoreMessage.clear();
+    exr_context_t context = nullptr;
+    exr_attr_box2i_t displayBox{};
+    exr_attr_box2i_t dataBox{};
+    exr_result_t result = exr_start_read(&context, path.c_str(), &init);
+    if (result == EXR_ERR_SUCCESS) result = exr_get_display_window(context, 0, &displayBox);
+    if (result == EXR_ERR_SUCCESS) result = exr_get_data_window(context, 0, &dataBox);
+    exr_finish(&context);
+    if (result != EXR_ERR_SUCCESS) {
+        throw inputError(path, 0,
+                         "cannot read OpenEXR image: " +
+                             (gCoreMessage.empty() ? std::string(exr_get_error_code_as_string(result)) : gCoreMessage));
+    }
+    const Imath::Box2i display = box(displayBox);
+    const Imath::Box2i data = box(dataBox);
+    auto size = [](const Imath::Box2i& b) { return std::to_string(width(b)) + "x" + std::to_string(height(b)); };
+    if (display.isEmpty() || width(display) > kLargestSide || height(display) > kLargestSide)
+        throw inputError(path, 0, "OpenEXR display window of " + size(display) + " pixels (at most 16384 a side)");
+    if (data.isEmpty()) return;
+    if (width(data) > kLargestSide || height(data) > kLargestSide)
+        throw inputError(path, 0, "OpenEXR data window of " + size(data) + " pixels (at most 16384 a side)");
+    std::error_code ec;
+    const std::uintmax_t bytes = fs::file_size(path, ec);
+    if (!ec && width(data) * height(data) > (std::int64_t(1) << 20) + std::int64_t(bytes) * kPixelsPerByte)
+        throw inputError(path, 0,
+                         "corrupt or truncated OpenEXR file: its header declares " + size(data) +
+                             " pixels, but the file has only " + std::to_string(bytes) + " bytes");
+}
+
+std::string channelNames(const Imf::ChannelList& channels) {
+    std::string names;
+    for (auto c = channels.begin(); c != channels.end(); ++c)
+        names += (names.empty() ? "" : ", ") + std::string(c.name());
+    return names.empty() ? "none" : names;
+}
+
+// The data window's colour, 3 floats a pixel, row by row.
+std::vector<float> readDataWindow(const fs::path& path, Imf::InputFile& file) {
+    const Imf::Header& header = file.header();
+    const Imath::Box2i data = header.dataWindow();
+    const Imf::ChannelList& channels = header.channels();
+    std::vector<float> rgb(std::size_t(width(data) * height(data)) * 3, 0.0f);
+    const bool hasRgb = channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
+    const bool hasChroma = channels.findChannel("RY") || channels.findChannel("BY");
+    if (!hasRgb && hasChroma) {
+        // Luminance and subsampled chroma: the library's RGBA interface rebuilds RGB (in half
+        // precision, which is what such a file holds).
+        Imf::RgbaInputFile rgba(path.c_str());
+        std::vector<Imf::Rgba> halves(std::size_t(width(data) * height(data)));
+        const std::intptr_t origin = std::intptr_t(data.min.x) + std::intptr_t(data.min.y) * std::intptr_t(width(data));
+        rgba.setFrameBuffer(reinterpret_cast<Imf::Rgba*>(reinterpret_cast<std::intptr_t>(halves.data()) -
+                                                         origin * std::intptr_t(sizeof(Imf::Rgba))),
+                            1, std::size_t(width(data)));
+        rgba.readPixels(data.min.y, data.max.y);
+        for (std::size_t i = 0; i < halves.size(); ++i) {
+            rgb[i * 3 + 0] = float(halves[i].r);
+            rgb[i * 3 + 1] = float(halves[i].g);
+            rgb[i * 3 + 2] = float(halves[i].b);
+        }
+        return rgb;
+    }
+    const bool grey = !hasRgb && channels.findChannel("Y");
+    if (!hasRgb && !grey)
+        throw inputError(path, 0,
+                         "an OpenEXR image needs R, G and B (or Y) channels; this one has " + channelNames(channels));
+    Imf::FrameBuffer frame;
+    const std::size_t pixelBytes = 3 * sizeof(float);
+    const std::size_t rowBytes = pixelBytes * std::size_t(width(data));
+    const char* names[3] = {"R", "G", "B"};
+    for (int c = 0; c < (grey ? 1 : 3); ++c) {
+        frame.insert(grey ? "Y" : names[c],
+                     Imf::Slice::Make(Imf::FLOAT, rgb.data() + c, data, pixelBytes, rowBytes, 1, 1, 0.0));
+    }
+    file.setFrameBuffer(frame);
+    file.readPixels(data.min.y, data.max.y);
+    if (grey) {
+        for (std::size_t i = 0; i < rgb.size(); i += 3) rgb[i + 1] = rgb[i + 2] = rgb[i];
+    }
+    return rgb;
+}
+
+}  // namespace
+
+Image readOpenExr(const fs::path& path) {
+    checkWindows(path);
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i display = file.header().displayWindow();
+        const Imath::Box2i data = file.header().dataWindow();
+        Image image(std::uint32_t(width(display)), std::uint32_t(height(display)));
+        if (data.isEmpty()) return image;
+        const std::vector<float> rgb = readDataWindow(path, file);
+        bool nonFinite = false;
+        // The display window's pixels that the data window covers.
+        const Imath::Box2i both(Imath::V2i(std::max(display.min.x, data.min.x), std::max(display.min.y, data.min.y)),
+                                Imath::V2i(std::min(display.max.x, data.max.x), std::min(display.max.y, data.max.y)));
+        for (std::int64_t y = both.min.y; y <= both.max.y; ++y) {
+            for (std::int64_t x = both.min.x; x <= both.max.x; ++x) {
+                const float* p = rgb.data() + ((y - data.min.y) * width(data) + (x - data.min.x)) * 3;
+                glm::vec3& out = image.at(std::uint32_t(x - display.min.x), std::uint32_t(y - display.min.y));
+                for (int c = 0; c < 3; ++c) {
+                    nonFinite = nonFinite || !std::isfinite(p[c]);
+                    out[c] = std::isfinite(p[c]) ? p[c] : 0.0f;
+                }
+            }
+        }
+        if (nonFinite) warn(path.string() + ": non-finite pixel values read as 0");
+        return image;
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw inputError(path, 0, std::string("cannot read OpenEXR image: ") + e.what());
+    }
+}
+
+void writeOpenExr(const Image& image, const fs::path& path) {
+    std::vector<float> rgb(image.pixels.size() * 3);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = std::isfinite(image.pixels[i][c]) ? image.pixels[i][c] : 0.0f;
+    }
+    Imf::Header header(int(image.width), int(image.height));
+    header.compression() = Imf::ZIP_COMPRESSION;
+    Imf::FrameBuffer frame;
+    const std::size_t pixelBytes = 3 * sizeof(float);
+    const char* names[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c) {
+        header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+        frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(rgb.data() + c), pixelBytes,
+                                          pixelBytes * image.width));
+    }
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(frame);
+    file.writePixels(int(image.height));
+}
+
+}  // namespace vitrum
