@@ -1,7 +1,7 @@
-// Reading and writing images: PNG and the other 8-bit formats through stb (sRGB), Radiance HDR through
-// stb (linear), PFM by hand (linear), OpenEXR through its library (linear, openexr_file.h). Writes
-// go to a temporary file next to the target that is renamed into place, so a failed write never
-// leaves a partial output behind.
+// Reading and writing images: PNG and the other 8-bit formats through stb (sRGB), binary PNM by hand
+// (sRGB, pnm_file.h), Radiance HDR through stb (linear), PFM by hand (linear), OpenEXR through its
+// library (linear, openexr_file.h). Writes go to a temporary file next to the target that is
+// renamed into place, so a failed write never leaves a partial output behind.
 #include <unistd.h>
 
 #include <algorithm>
@@ -22,6 +22,7 @@
 #include "common/error.h"
 #include "image/image.h"
 #include "image/openexr_file.h"
+#include "image/pnm_file.h"
 #include "image/srgb.h"
 
 namespace vitrum {
@@ -152,31 +153,6 @@ Image readPfm(const fs::path& path) {
 }
 
 // ---- stb ----------------------------------------------------------------------------------------
-
-// stb's PNM reader (P5, P6) accumulates header numbers in an int without an overflow check, which
-// is undefined behaviour for "P6 99999999999 ..." (found by fuzzing, tests/fuzz/regressions/image):
-// refuse a header number of more than 9 digits before stb reads it. Follows stb's tokenizer:
-// whitespace and '#' comments, then digits.
-void checkPnmHeader(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    char header[4096];
-    in.read(header, sizeof header);
-    const std::size_t size = std::size_t(in.gcount());
-    if (size < 2 || header[0] != 'P' || (header[1] != '5' && header[1] != '6')) return;
-    std::size_t pos = 2;
-    for (int number = 0; number < 3 && pos < size; ++number) {
-        while (pos < size && (std::isspace(static_cast<unsigned char>(header[pos])) || header[pos] == '#')) {
-            if (header[pos] == '#') {
-                while (pos < size && header[pos] != '\n' && header[pos] != '\r') ++pos;
-            } else {
-                ++pos;
-            }
-        }
-        std::size_t digits = 0;
-        while (pos < size && header[pos] >= '0' && header[pos] <= '9') ++digits, ++pos;
-        if (digits > 9) throw inputError(path, 0, "corrupt PNM file: a number in its header is too large");
-    }
-}
 
 // stb decodes whatever size a header declares, reading zeros past the end of a truncated file:
 // 137 bytes of TGA can ask for 256 x 65535 pixels (found by fuzzing, tests/fuzz/regressions/image).
@@ -334,7 +310,7 @@ Image readImage(const fs::path& path) {
     // .hdr is never gamma-converted by stb (and a .hdr that is not one is reported).
     const bool isHdr = stbi_is_hdr(path.string().c_str()) != 0;
     if (ext == ".hdr" && !isHdr) throw inputError(path, 0, "cannot read image: not a Radiance HDR file");
-    checkPnmHeader(path);
+    if (isBinaryPnm(path)) return readPnm(path);
     checkDeclaredSize(path);
     if (isHdr) return readLinearHdr(path);
     return readSrgb(path);

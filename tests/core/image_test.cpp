@@ -10,6 +10,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -163,6 +164,53 @@ TEST_F(ImageIoTest, HdrRoundTripWithinRgbePrecision) {
             EXPECT_NEAR(read.pixels[i][c], v[c], largest / 128.0f) << "pixel " << i << " channel " << c;
         }
         EXPECT_NEAR(std::max({read.pixels[i].r, read.pixels[i].g, read.pixels[i].b}), largest, largest / 128.0f);
+    }
+}
+
+// PNM (host/image/pnm_file.h): a sample is v / maxval, sRGB-decoded; 16-bit samples are
+// big-endian words; grey goes to all three channels, colour keeps its own.
+TEST_F(ImageIoTest, PnmSamplesAreScaledByMaxvalAndBigEndian) {
+    const unsigned char grey[] = {0x00, 0x00, 0x80, 0x00, 0xff, 0xff};
+    writeBytes(dir_ / "grey16.pgm", "P5\n3 1\n65535\n" + std::string(reinterpret_cast<const char*>(grey), sizeof grey));
+    const Image g = readImage(dir_ / "grey16.pgm");
+    ASSERT_EQ(g.width, 3u);
+    ASSERT_EQ(g.height, 1u);
+    EXPECT_EQ(g.at(0, 0), glm::vec3(0.0f));
+    EXPECT_EQ(g.at(1, 0), glm::vec3(srgbToLinear(32768.0f / 65535.0f)));
+    EXPECT_EQ(g.at(2, 0), glm::vec3(1.0f));
+
+    const unsigned char rgb[] = {0x03, 0xe8, 0x00, 0x00, 0x01, 0xf4, 0x00, 0x00, 0x00, 0x01, 0x03, 0xe8};
+    writeBytes(dir_ / "rgb16.ppm", "P6\n2 1\n1000\n" + std::string(reinterpret_cast<const char*>(rgb), sizeof rgb));
+    const Image c = readImage(dir_ / "rgb16.ppm");
+    ASSERT_EQ(c.width, 2u);
+    EXPECT_EQ(c.at(0, 0), glm::vec3(1.0f, 0.0f, srgbToLinear(500.0f / 1000.0f)));
+    EXPECT_EQ(c.at(1, 0), glm::vec3(0.0f, srgbToLinear(1.0f / 1000.0f), 1.0f));
+
+    // 8 bits with maxval 15, a comment in the header and bytes after the raster.
+    const unsigned char eight[] = {15, 5, 0, 3, 15, 10, 0xAA};
+    writeBytes(dir_ / "eight.ppm",
+               "P6 # made by hand\n2 1 15\n" + std::string(reinterpret_cast<const char*>(eight), sizeof eight));
+    const Image e = readImage(dir_ / "eight.ppm");
+    EXPECT_EQ(e.at(0, 0), glm::vec3(1.0f, srgbToLinear(5.0f / 15.0f), 0.0f));
+    EXPECT_EQ(e.at(1, 0), glm::vec3(srgbToLinear(3.0f / 15.0f), 1.0f, srgbToLinear(10.0f / 15.0f)));
+}
+
+TEST_F(ImageIoTest, CorruptPnmIsInputErrorNamingWhatIsWrong) {
+    const std::pair<const char*, const char*> cases[] = {
+        {"P6\n2 2\n255\nabc", "expected 12 bytes of pixel data, got 3"},
+        {"P5\n2 2\n65535\n\x01\x02\x03\x04", "expected 8 bytes"},
+        {"P6 99999999999 1 255\n", "width is too large"},
+        {"P5\n20000 1\n255\n", "bad size 20000x1"},
+        {"P5\n1 1\n70000\n\x01\x02", "maxval 70000"},
+        {"P5\n1 1\n0\n\x01", "maxval 0"},
+        {"P6\n1\n", "expected the height"},
+    };
+    for (const auto& [bytes, expected] : cases) {
+        const fs::path path = dir_ / "bad.ppm";
+        writeBytes(path, bytes);
+        const std::string message = exceptionMessage([&] { readImage(path); });
+        EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+        EXPECT_NE(message.find(expected), std::string::npos) << bytes << ": " << message;
     }
 }
 
