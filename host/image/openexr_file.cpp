@@ -41,9 +41,27 @@ Imath::Box2i box(const exr_attr_box2i_t& b) {
     return Imath::Box2i(Imath::V2i(b.min.x, b.min.y), Imath::V2i(b.max.x, b.max.y));
 }
 
-// The first part's display and data windows, checked from its header alone: the library's image
-// readers allocate for the windows (line buffers, chunk tables) as they open the file.
-void checkWindows(const fs::path& path) {
+// Refuses windows larger than vitrum reads or than the file's bytes can hold.
+void checkWindowSizes(const fs::path& path, const Imath::Box2i& display, const Imath::Box2i& data) {
+    auto size = [](const Imath::Box2i& b) { return std::to_string(width(b)) + "x" + std::to_string(height(b)); };
+    if (display.isEmpty() || width(display) > kLargestSide || height(display) > kLargestSide)
+        throw inputError(path, 0, "OpenEXR display window of " + size(display) + " pixels (at most 16384 a side)");
+    if (data.isEmpty()) return;
+    if (width(data) > kLargestSide || height(data) > kLargestSide)
+        throw inputError(path, 0, "OpenEXR data window of " + size(data) + " pixels (at most 16384 a side)");
+    std::error_code ec;
+    const std::uintmax_t bytes = fs::file_size(path, ec);
+    if (!ec && width(data) * height(data) > (std::int64_t(1) << 20) + std::int64_t(bytes) * kPixelsPerByte)
+        throw inputError(path, 0,
+                         "corrupt or truncated OpenEXR file: its header declares " + size(data) +
+                             " pixels, but the file has only " + std::to_string(bytes) + " bytes");
+}
+
+// The first part's windows as the core library parses its header, checked before the C++ reader
+// opens the file: that reader allocates for the windows (line buffers, chunk tables) as it opens
+// it. The two libraries parse a malformed header each its own way (found by fuzzing), so
+// readOpenExr checks the C++ reader's windows too.
+void checkHeaderWindows(const fs::path& path) {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = keepCoreMessage;
     gCoreMessage.clear();
@@ -59,20 +77,7 @@ void checkWindows(const fs::path& path) {
                          "cannot read OpenEXR image: " +
                              (gCoreMessage.empty() ? std::string(exr_get_error_code_as_string(result)) : gCoreMessage));
     }
-    const Imath::Box2i display = box(displayBox);
-    const Imath::Box2i data = box(dataBox);
-    auto size = [](const Imath::Box2i& b) { return std::to_string(width(b)) + "x" + std::to_string(height(b)); };
-    if (display.isEmpty() || width(display) > kLargestSide || height(display) > kLargestSide)
-        throw inputError(path, 0, "OpenEXR display window of " + size(display) + " pixels (at most 16384 a side)");
-    if (data.isEmpty()) return;
-    if (width(data) > kLargestSide || height(data) > kLargestSide)
-        throw inputError(path, 0, "OpenEXR data window of " + size(data) + " pixels (at most 16384 a side)");
-    std::error_code ec;
-    const std::uintmax_t bytes = fs::file_size(path, ec);
-    if (!ec && width(data) * height(data) > (std::int64_t(1) << 20) + std::int64_t(bytes) * kPixelsPerByte)
-        throw inputError(path, 0,
-                         "corrupt or truncated OpenEXR file: its header declares " + size(data) +
-                             " pixels, but the file has only " + std::to_string(bytes) + " bytes");
+    checkWindowSizes(path, box(displayBox), box(dataBox));
 }
 
 std::string channelNames(const Imf::ChannelList& channels) {
@@ -130,11 +135,12 @@ std::vector<float> readDataWindow(const fs::path& path, Imf::InputFile& file) {
 }  // namespace
 
 Image readOpenExr(const fs::path& path) {
-    checkWindows(path);
+    checkHeaderWindows(path);
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i display = file.header().displayWindow();
         const Imath::Box2i data = file.header().dataWindow();
+        checkWindowSizes(path, display, data);
         Image image(std::uint32_t(width(display)), std::uint32_t(height(display)));
         if (data.isEmpty()) return image;
         const std::vector<float> rgb = readDataWindow(path, file);
