@@ -48,6 +48,7 @@ RenderParams loadRenderParams() {
     p.environment = imageLoad(paramTexels, 10);
     p.offsets = fetchVec4(paramTexels, 0u, 11u);
     p.bvh = imageLoad(paramTexels, 12);
+    p.cameraMedia = imageLoad(paramTexels, 13);
     return p;
 }
 

@@ -215,9 +215,9 @@ void startPrimaryRay() {
     uint k = st.colourLow.w;
     vec2 position = vec2(pixel) + sampleOffsetInPixel(pixelIndex, k, params.image.z, params.pass.y);
     st.ray.origin = vec4(params.cameraFrom.xyz, uintBitsToFloat(0u));
-    st.ray.direction = vec4(cameraRayDirection(position), uintBitsToFloat(0u));
+    st.ray.direction = vec4(cameraRayDirection(position), uintBitsToFloat(usesMaterial(kMaterialGlass) ? params.pass.x : 0u));
     st.ray.weight = vec4(1.0);
-    st.ray.media = uvec4(0u);
+    st.ray.media = params.cameraMedia;  // the media around the camera, innermost last
     st.control.y = 0u;
     if (params.image.w == 0u) {
         // max_depth 0: not even the primary ray is traced (render model); the sample is black.

@@ -12,6 +12,7 @@
 #include "gpu/trace_pipeline.h"
 #include "gpu/vulkan_device.h"
 #include "image/image_diff.h"
+#include "render/camera_medium.h"
 #include "render/scene_features.h"
 #include "render/trace_specialization.h"
 #include "scene/scene_names.h"
@@ -73,6 +74,11 @@ int infoCommand(int argc, char** argv, int first) {
     const Camera& c = scene.camera;
     std::printf("camera: from (%g, %g, %g) at (%g, %g, %g) up (%g, %g, %g), fov_y %g deg, %ux%u\n", c.from.x,
                 c.from.y, c.from.z, c.at.x, c.at.y, c.at.z, c.up.x, c.up.y, c.up.z, c.fovY, c.width, c.height);
+    // The media every primary ray starts inside (render/camera_medium.h).
+    std::string media;
+    for (std::uint32_t object : cameraMedia(scene))
+        media += (media.empty() ? "inside " : ", then ") + scene.objectNames[object];
+    std::printf("camera medium: %s\n", media.empty() ? "air" : media.c_str());
     std::printf("background: (%g, %g, %g), air IOR %g\n", scene.background.colour.x, scene.background.colour.y,
                 scene.background.colour.z, scene.airIor);
     std::printf("render: %u spp, max depth %u, fresnel %s, min weight %g\n", scene.settings.samplesPerPixel,

@@ -25,6 +25,7 @@
 #include "bvh/bvh_traversal.h"
 #include "cpu/optics.h"
 #include "cpu/ray_offset.h"
+#include "render/camera_medium.h"
 #include "render/sampling.h"
 #include "render/scene_features.h"
 
@@ -95,6 +96,7 @@ public:
           bvh_(bvh),
           vertices_(packTriangleVertices(bvh, scene.triangles)),
           mediumMaterials_(objectMediumMaterials(scene)),
+          cameraMedia_(cameraMedia(scene)),
           maxDepth_(scene.settings.maxDepth),
           touchTolerance_(Real(features.touchingDistance)),
           touchingPossible_(features.touchingMediaPossible),
@@ -125,7 +127,7 @@ public:
                 continue;
             }
             counters.rays.primary += 1;
-            sum += trace(cameraFrom_, d, 0, MediumStack{}, Color(1), counters);
+            sum += trace(cameraFrom_, d, 0, cameraMedia_, Color(1), counters);
         }
         return sum / Real(n);
     }
@@ -411,6 +413,7 @@ private:
     const Bvh& bvh_;
     std::vector<gpu::TriangleVertices> vertices_;
     std::vector<std::uint32_t> mediumMaterials_;
+    MediumStack cameraMedia_;  // every primary ray starts inside them (render/camera_medium.h)
     std::uint32_t maxDepth_;
     Real touchTolerance_;    // surfaces closer than this along a ray touch
     bool touchingPossible_;  // glass surfaces of two objects close enough to touch (scene_features.h)

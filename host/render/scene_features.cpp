@@ -59,16 +59,16 @@ Edge reversed(const Edge& e) {
     return r;
 }
 
-// Glass objects that are not closed and consistently wound: every directed edge must appear once,
-// and its reverse once.
-std::uint32_t countOpenGlassObjects(const Scene& scene) {
+}  // namespace
+
+std::set<std::uint32_t> openGlassObjects(const Scene& scene) {
     std::map<std::uint32_t, std::unordered_map<Edge, int, EdgeHash>> edges;
     for (const Triangle& t : scene.triangles) {
         if (scene.materials[t.material].model != MaterialModel::Glass) continue;
         auto& objectEdges = edges[t.object];
         for (int i = 0; i < 3; ++i) objectEdges[edge(t.position[i], t.position[(i + 1) % 3])] += 1;
     }
-    std::uint32_t open = 0;
+    std::set<std::uint32_t> open;
     for (const auto& objectAndEdges : edges) {
         // Not a structured binding: C++20 lets a lambda capture one, but clang only from version
         // 16 on, and the fuzz build's clang is Debian 12's 14.
@@ -78,12 +78,10 @@ std::uint32_t countOpenGlassObjects(const Scene& scene) {
             const auto found = objectEdges.find(reverse);
             return entry.second == 1 && !(reverse == entry.first) && found != objectEdges.end() && found->second == 1;
         });
-        if (!closed) ++open;
+        if (!closed) open.insert(objectAndEdges.first);
     }
     return open;
 }
-
-}  // namespace
 
 double sceneDiagonal(const std::vector<Triangle>& triangles) {
     DoubleBox box;
@@ -129,7 +127,7 @@ SceneFeatures analyseScene(const Scene& scene) {
     // Overlapping boxes say that two objects may touch or one lie in the other; only the
     // triangles tell which (a bubble in a block is nested, never touching).
     f.touchingMediaPossible = mostOverlaps > 0 && findCloseGlassTriangles(scene, margin).found;
-    f.openGlassObjects = countOpenGlassObjects(scene);
+    f.openGlassObjects = std::uint32_t(openGlassObjects(scene).size());
     f.mediumStackDepth = !f.glass ? 0
                          : f.openGlassObjects > 0 ? gpu::kMaxMediumDepth
                                                   : std::min<std::uint32_t>(gpu::kMaxMediumDepth, 1 + mostOverlaps);

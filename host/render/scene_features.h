@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,10 @@ struct SceneFeatures {
 };
 
 SceneFeatures analyseScene(const Scene& scene);
+
+// The glass objects whose glass triangles are not a closed, consistently wound mesh: some
+// directed edge does not appear exactly once with its reverse exactly once.
+std::set<std::uint32_t> openGlassObjects(const Scene& scene);
 
 // Length of the diagonal of the box around every triangle (0 for an empty scene).
 double sceneDiagonal(const std::vector<Triangle>& triangles);

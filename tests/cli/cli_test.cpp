@@ -152,6 +152,24 @@ TEST_F(Cli, InfoReportsTrianglesAndBvh) {
     EXPECT_NE(r.output.find("SAH cost"), std::string::npos) << r.output;
 }
 
+// bubble.json with its camera moved into the air bubble, which lies in the glass block.
+TEST_F(Cli, InfoSaysWhichMediaTheCameraIsIn) {
+    std::ifstream in(std::string(VITRUM_SOURCE_DIR) + "/scenes/bubble.json");
+    nlohmann::json scene = nlohmann::json::parse(in);
+    for (auto& object : scene["objects"])
+        object["obj"] = std::string(VITRUM_SOURCE_DIR) + "/scenes/" + object["obj"].get<std::string>();
+    for (auto& object : scene["objects"])
+        if (object.contains("mtl"))
+            object["mtl"] = std::string(VITRUM_SOURCE_DIR) + "/scenes/" + object["mtl"].get<std::string>();
+    CommandRun outside = vitrum("info " + write("outside.json", scene.dump()));
+    EXPECT_NE(outside.output.find("camera medium: air\n"), std::string::npos) << outside.output;
+    scene["camera"]["from"] = {0.0, -0.1, 1.0};
+    CommandRun inside = vitrum("info " + write("inside.json", scene.dump()));
+    EXPECT_EQ(inside.exitCode, 0) << inside.output;
+    EXPECT_NE(inside.output.find("camera medium: inside block.obj/block, then sphere.obj/sphere\n"), std::string::npos)
+        << inside.output;
+}
+
 }  // namespace
 
 namespace {

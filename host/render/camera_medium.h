@@ -1,0 +1,29 @@
+// The media around the camera, which every primary ray starts inside (render model: "Primary rays
+// start with the camera's medium").
+//
+// A glass object holds the camera when its glass triangles make a closed, consistently wound mesh
+// (scene_features.h) whose winding number at the camera's position is above 1/2: +1 inside a
+// mesh wound counterclockwise seen from outside, as the renderers' "entering" test assumes, 0
+// outside. A camera on a surface (1/2) is outside it; an open object holds no medium. The media
+// are ordered as a ray's stack is, innermost last: by the volume of their boxes, the largest
+// first (of two nested closed meshes the inner one has the smaller box). The GPU's stack holds
+// gpu::kMaxMediumDepth media, so only that many innermost ones are kept, with a warning; both
+// backends start from this list.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace vitrum {
+
+// Object indices (Triangle::object), innermost last; empty: the camera is in air.
+std::vector<std::uint32_t> cameraMedia(const Scene& scene);
+
+// The winding number of the triangles at `point` (the sum of their signed solid angles over 4 pi).
+double windingNumber(const std::vector<const Triangle*>& triangles, const glm::dvec3& point);
+
+}  // namespace vitrum
