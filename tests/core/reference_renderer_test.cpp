@@ -13,10 +13,13 @@
 #include "render/sampling.h"
 #include "scene/scene_loader.h"
 
+#include "../support/scenes_in_code.h"
+
 namespace vitrum {
 namespace {
 
 using Vec3d = glm::dvec3;
+using namespace vitrum::testing;
 
 // ---- Optics: the lecture's worked example ---------------------------------------------------
 
@@ -188,79 +191,6 @@ TEST(ReferenceSampling, JitterUsesTheSharedHash) {
 
 // ---- Scenes built in code -------------------------------------------------------------------
 
-Material makeMaterial(MaterialModel model, glm::vec3 ambient, glm::vec3 diffuse, glm::vec3 specular = glm::vec3(0),
-                      float shininess = 1.0f, float ior = 1.5f) {
-    Material m;
-    m.model = model;
-    m.ambient = ambient;
-    m.diffuse = diffuse;
-    m.specular = specular;
-    m.shininess = shininess;
-    m.ior = ior;
-    return m;
-}
-
-// A triangle with its geometric normal as vertex normals.
-Triangle makeTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, std::uint32_t material, std::uint32_t object) {
-    Triangle t{};
-    t.position[0] = a;
-    t.position[1] = b;
-    t.position[2] = c;
-    const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
-    for (auto& vn : t.normal) vn = n;
-    t.material = material;
-    t.object = object;
-    return t;
-}
-
-// A square of half-size h centred at c in the plane y = c.y, facing -y (towards a camera on -y)
-// or +y. Texture coordinates span [0, 1]^2 with u along +x and v along +z.
-void addSquareY(Scene& scene, glm::vec3 c, float h, bool facingMinusY, std::uint32_t material, std::uint32_t object) {
-    glm::vec3 p00 = c + glm::vec3(-h, 0, -h), p10 = c + glm::vec3(h, 0, -h), p11 = c + glm::vec3(h, 0, h),
-              p01 = c + glm::vec3(-h, 0, h);
-    Triangle a = makeTriangle(p00, p10, p11, material, object);  // normal -y
-    Triangle b = makeTriangle(p00, p11, p01, material, object);
-    a.uv[0] = {0, 0}, a.uv[1] = {1, 0}, a.uv[2] = {1, 1};
-    b.uv[0] = {0, 0}, b.uv[1] = {1, 1}, b.uv[2] = {0, 1};
-    if (!facingMinusY) {
-        for (Triangle* t : {&a, &b}) {
-            std::swap(t->position[1], t->position[2]);
-            std::swap(t->uv[1], t->uv[2]);
-            for (auto& n : t->normal) n = -n;
-        }
-    }
-    scene.triangles.push_back(a);
-    scene.triangles.push_back(b);
-}
-
-// A closed box, outward wound.
-void addBox(Scene& scene, glm::vec3 lo, glm::vec3 hi, std::uint32_t material, std::uint32_t object) {
-    const glm::vec3 centre = 0.5f * (lo + hi);
-    glm::vec3 corner[8];
-    for (int i = 0; i < 8; ++i) corner[i] = glm::vec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
-    const int faces[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
-    for (const auto& f : faces)
-        for (int tri = 0; tri < 2; ++tri) {
-            glm::vec3 a = corner[f[0]], b = corner[f[1 + tri]], c = corner[f[2 + tri]];
-            if (glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0f - centre) < 0.0f) std::swap(b, c);
-            scene.triangles.push_back(makeTriangle(a, b, c, material, object));
-        }
-}
-
-// Camera at (0, -5, 0) looking along +y, z up, 9 x 9 pixels: the centre pixel's ray is exactly +y.
-Scene baseScene() {
-    Scene scene;
-    scene.camera.from = {0, -5, 0};
-    scene.camera.at = {0, 0, 0};
-    scene.camera.up = {0, 0, 1};
-    scene.camera.fovY = 40.0f;
-    scene.camera.width = 9;
-    scene.camera.height = 9;
-    scene.background.colour = {0.1f, 0.2f, 0.3f};
-    scene.settings.maxDepth = 10;
-    return scene;
-}
-
 Image render(const Scene& scene, bool doublePrecision = false, RenderStats* statsOut = nullptr, unsigned threads = 2) {
     const Bvh bvh = buildBvh(scene.triangles);
     RenderStats stats;
@@ -279,10 +209,7 @@ void expectColour(const glm::vec3& actual, const glm::dvec3& expected, double to
 }
 
 TEST(ReferenceRenderer, LambertCentrePixelMatchesHandCalculation) {
-    Scene scene = baseScene();
-    scene.materials.push_back(makeMaterial(MaterialModel::Lambert, {0.05f, 0.1f, 0.02f}, {0.8f, 0.5f, 0.3f}));
-    scene.objectNames = {"wall"};
-    addSquareY(scene, {0, 0, 0}, 3.0f, true, 0, 0);
+    Scene scene = wallOf(makeMaterial(MaterialModel::Lambert, {0.05f, 0.1f, 0.02f}, {0.8f, 0.5f, 0.3f}));
     scene.lights.push_back({{1, -3, 2}, {0.9f, 1.0f, 0.7f}, false});
     for (bool dp : {false, true}) {
         RenderStats stats;
@@ -300,10 +227,7 @@ TEST(ReferenceRenderer, LambertCentrePixelMatchesHandCalculation) {
 }
 
 TEST(ReferenceRenderer, InverseSquareFallOffDimsTheDirectTerm) {
-    Scene scene = baseScene();
-    scene.materials.push_back(makeMaterial(MaterialModel::Lambert, {0.1f, 0.1f, 0.1f}, {1, 1, 1}));
-    scene.objectNames = {"wall"};
-    addSquareY(scene, {0, 0, 0}, 3.0f, true, 0, 0);
+    Scene scene = wallOf(makeMaterial(MaterialModel::Lambert, {0.1f, 0.1f, 0.1f}, {1, 1, 1}));
     scene.lights.push_back({{0, -2, 0}, {1, 1, 1}, true});
     // Ambient is not attenuated (as in trace.comp); the direct term is divided by d^2 = 4.
     expectColour(render(scene).at(4, 4), glm::dvec3(0.1 + 1.0 / 4.0));
@@ -350,10 +274,7 @@ TEST(ReferenceRenderer, OccluderLeavesOnlyTheAmbientTerm) {
 }
 
 TEST(ReferenceRenderer, LightBehindTheSurfaceGivesAmbientOnly) {
-    Scene scene = baseScene();
-    scene.materials.push_back(makeMaterial(MaterialModel::Lambert, {0.05f, 0.05f, 0.05f}, {0.8f, 0.8f, 0.8f}));
-    scene.objectNames = {"wall"};
-    addSquareY(scene, {0, 0, 0}, 3.0f, true, 0, 0);
+    Scene scene = wallOf(makeMaterial(MaterialModel::Lambert, {0.05f, 0.05f, 0.05f}, {0.8f, 0.8f, 0.8f}));
     scene.lights.push_back({{0, 2, 0}, {1, 1, 1}, false});
     RenderStats stats;
     expectColour(render(scene, false, &stats).at(4, 4), glm::dvec3(0.05));
@@ -361,17 +282,14 @@ TEST(ReferenceRenderer, LightBehindTheSurfaceGivesAmbientOnly) {
 }
 
 TEST(ReferenceRenderer, DiffuseTextureIsSampledBilinearly) {
-    Scene scene = baseScene();
     Material m = makeMaterial(MaterialModel::Lambert, {0, 0, 0}, {1, 1, 1});
     m.diffuseTexture = 0;
-    scene.materials.push_back(m);
-    scene.objectNames = {"wall"};
+    Scene scene = wallOf(m);
     Texture texture;
     texture.width = 2;
     texture.height = 2;
     texture.texels = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
     scene.textures.push_back(texture);
-    addSquareY(scene, {0, 0, 0}, 3.0f, true, 0, 0);
     scene.lights.push_back({{0, -5, 0}, {1, 1, 1}, false});
     // The centre hit has uv = (0.5, 0.5): exactly between the four texel centres.
     expectColour(render(scene).at(4, 4), {0.5, 0.5, 0.5});
@@ -398,13 +316,7 @@ TEST(ReferenceRenderer, MirrorReflectsTheWallBehindTheCamera) {
 }
 
 TEST(ReferenceRenderer, PhongAddsSchlickWeightedReflection) {
-    Scene scene = baseScene();
-    scene.materials.push_back(
-        makeMaterial(MaterialModel::Phong, {0.01f, 0.01f, 0.01f}, {0.3f, 0.2f, 0.1f}, {0.5f, 0.5f, 0.5f}, 20.0f, 1.5f));
-    scene.materials.push_back(makeMaterial(MaterialModel::Lambert, {0.1f, 0.1f, 0.1f}, {0.5f, 0.6f, 0.7f}));
-    scene.objectNames = {"plastic", "wall"};
-    addSquareY(scene, {0, 0, 0}, 3.0f, true, 0, 0);
-    addSquareY(scene, {0, -10, 0}, 30.0f, false, 1, 1);
+    Scene scene = plasticBeforeWall();
     scene.lights.push_back({{0, -5, 0}, {1, 1, 1}, false});
     // Head-on: n.l = 1, l_r = v so the highlight is 1; R = F0 = 0.04 for air -> 1.5.
     const glm::dvec3 phong = glm::dvec3(0.01) + glm::dvec3(0.3, 0.2, 0.1) + glm::dvec3(0.5);
@@ -574,8 +486,10 @@ TEST(ReferenceRenderer, TracedRayLogHoldsEveryRayOfTheTree) {
     std::uint64_t shadow = 0, fromCamera = 0;
     for (const TracedRay& r : rays) {
         shadow += r.anyHit;
-        if (r.anyHit) EXPECT_EQ(r.tMax, 1.0f);  // o + t d reaches the light at t = 1
-        else EXPECT_NEAR(glm::length(r.direction), 1.0f, 1e-5f);
+        if (r.anyHit)
+            EXPECT_EQ(r.tMax, 1.0f);  // o + t d reaches the light at t = 1
+        else
+            EXPECT_NEAR(glm::length(r.direction), 1.0f, 1e-5f);
         fromCamera += !r.anyHit && r.origin == scene.camera.from;
     }
     EXPECT_GT(stats.rays.shadow, 0u);

@@ -247,6 +247,36 @@ TEST(SceneMtl, SrgbDecodingDefaultsAndLinearTf) {
     EXPECT_EQ(scene.materials[scene.triangles[1].material].name, "bare");
 }
 
+// Negative coefficients would make negative radiance: each is clamped to 0 with a warning; an
+// IOR must be positive, so Ni 0 (which some exporters write for opaque materials) and below warn
+// and keep the default 1.5. Values that are fine stay as they are, without a warning.
+TEST(SceneMtl, NegativeCoefficientsClampAndNonPositiveNiFallsBackWithWarnings) {
+    fs::path dir = tempDir();
+    write(dir / "m.mtl",
+          "newmtl bad\nshader 4\nKa -0.1 0.5 0.5\nKd 0.5 -1 0.5\nKs -2\nNs -5\nTf 1 -0.5 2\nNi 0\n"
+          "newmtl worse\nshader 4\nNi -1.2\n"
+          "newmtl good\nshader 4\nKd 0.5 0.5 0.5\nNs 20\nTf 0.25 0 1\nNi 1.33\n");
+    write(dir / "m.obj", "mtllib m.mtl\n" + kTriangleObj.substr(0, 24) +
+                             "usemtl bad\nf 1 2 3\nusemtl worse\nf 1 3 2\nusemtl good\nf 2 1 3\n");
+    const int before = warningCount();
+    Scene scene = loadScene(dir / "m.obj");
+    EXPECT_EQ(warningCount(), before + 7);  // Ka, Kd, Ks, Ns, Tf and Ni of "bad", Ni of "worse"
+    const float half = srgbToLinear(0.5f);
+    const Material& bad = materialNamed(scene, "bad");
+    expectVec3Near(bad.ambient, {0.0f, half, half}, 1e-7f);
+    expectVec3Near(bad.diffuse, {half, 0.0f, half}, 1e-7f);
+    EXPECT_EQ(bad.specular, glm::vec3(0.0f));
+    EXPECT_EQ(bad.shininess, 0.0f);
+    EXPECT_EQ(bad.attenuation, glm::vec3(1.0f, 0.0f, 2.0f));
+    EXPECT_EQ(bad.ior, 1.5f);
+    EXPECT_EQ(materialNamed(scene, "worse").ior, 1.5f);
+    const Material& good = materialNamed(scene, "good");
+    expectVec3Near(good.diffuse, glm::vec3(half), 1e-7f);
+    EXPECT_EQ(good.shininess, 20.0f);
+    EXPECT_EQ(good.attenuation, glm::vec3(0.25f, 0.0f, 1.0f));
+    EXPECT_EQ(good.ior, 1.33f);
+}
+
 TEST(SceneMtl, KsTypoReadsAsOneWithOneWarningPerFile) {
     for (const char* file : {"box_sphere/box_sphere.mtl", "allied_avenger_6887/6887_allied_avenger.mtl"}) {
         std::vector<MtlEntry> entries = parseMtlFile(course(file));
