@@ -147,8 +147,10 @@ RenderCommand parse(int argc, char** argv, int first) {
         // Fail before any long work when the output cannot be written where asked.
         if (out.empty()) continue;
         std::filesystem::path parent = std::filesystem::path(out).parent_path();
-        if (!parent.empty() && !std::filesystem::is_directory(parent))
+        std::error_code ec;
+        if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
             throw InputError(out + ": cannot write the file: " + parent.string() + " is not a directory");
+        checkWritable(out);
     }
     if (!c.statsPath.empty() && !hasExtension(c.statsPath, {".json"}))
         throw InputError(c.statsPath + ": --stats must name a .json file");

@@ -1,16 +1,39 @@
 #include "common/atomic_file.h"
 
+#include <unistd.h>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <system_error>
-#include <unistd.h>
 
 #include "common/error.h"
 
 namespace vitrum {
 
-void writeFileAtomically(const std::filesystem::path& path, const std::string& contents) {
+namespace {
+
+std::filesystem::path temporaryFor(const std::filesystem::path& path) {
     std::filesystem::path temporary = path;
     temporary += ".tmp-" + std::to_string(::getpid());
+    return temporary;
+}
+
+}  // namespace
+
+void checkWritable(const std::filesystem::path& path) {
+    const std::filesystem::path temporary = temporaryFor(path);
+    errno = 0;
+    if (!std::ofstream(temporary, std::ios::binary)) {
+        const int reason = errno;
+        throw inputError(
+            path, 0, std::string("cannot write the file") + (reason ? ": " + std::string(std::strerror(reason)) : ""));
+    }
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+}
+
+void writeFileAtomically(const std::filesystem::path& path, const std::string& contents) {
+    const std::filesystem::path temporary = temporaryFor(path);
     {
         std::ofstream out(temporary, std::ios::binary);
         if (out) out.write(contents.data(), std::streamsize(contents.size()));

@@ -9,4 +9,9 @@ namespace vitrum {
 // Throws InputError naming the file when it cannot be written.
 void writeFileAtomically(const std::filesystem::path& path, const std::string& contents);
 
+// Throws InputError naming the file, with the system's reason, when no file can be created at
+// `path` (a name too long, a read-only folder): the temporary that writeFileAtomically and
+// writeImage would write is created and removed. For outputs, before any long work.
+void checkWritable(const std::filesystem::path& path);
+
 }  // namespace vitrum

@@ -140,10 +140,19 @@ private:
     Lookup lookup_;
 };
 
+// The file's canonical path, where the file system gives one, as the key of the files read
+// once: a name it refuses (one longer than NAME_MAX, found by fuzzing) is its own key, and the
+// read that follows reports it.
+fs::path fileKey(const fs::path& file) {
+    std::error_code ec;
+    fs::path key = fs::weakly_canonical(file, ec);
+    return ec ? file : key;
+}
+
 }  // namespace
 
 const ObjLoader::Library& ObjLoader::library(const fs::path& mtlFile) {
-    fs::path key = fs::weakly_canonical(mtlFile);
+    fs::path key = fileKey(mtlFile);
     if (auto found = libraries_.find(key); found != libraries_.end()) return found->second;
     Library library;
     for (const MtlEntry& entry : parseMtlFile(mtlFile)) {
@@ -165,7 +174,7 @@ const ObjLoader::Library& ObjLoader::library(const fs::path& mtlFile) {
 }
 
 int ObjLoader::texture(const fs::path& imageFile, const fs::path& mtlFile, int line) {
-    fs::path key = fs::weakly_canonical(imageFile);
+    fs::path key = fileKey(imageFile);
     if (auto found = textures_.find(key); found != textures_.end()) return found->second;
     int index = -1;
     try {

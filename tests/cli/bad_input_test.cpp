@@ -238,6 +238,28 @@ TEST_F(CliBadInput, PathsThatDoNotExistAreNamed) {
     EXPECT_NE(r.output.find("nope.obj"), std::string::npos) << r.output;
 }
 
+// A name longer than the file system allows (255 bytes a name on Linux): inputs are reported as
+// not found, outputs are refused before the render (which could take minutes) and leave nothing.
+TEST_F(CliBadInput, NamesTooLongForTheFileSystemAreRefusedBeforeRendering) {
+    const std::string longName(300, 'y');
+    expectRefused(path(longName + ".obj"), {longName + ".obj"});
+    for (const std::string& output : {"-o " + path(longName + ".png"), "-o " + path("out.png") + " --stats " +
+                                                                           path(longName + ".json")}) {
+        CommandRun r = vitrum("render " + path("tri.obj") + " --width 8 --height 8 " + output);
+        EXPECT_EQ(r.exitCode, 1) << r.output;
+        EXPECT_NE(r.output.find(longName + "."), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("cannot write the file"), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("rays:"), std::string::npos) << "rendered before refusing: " << r.output;
+        expectNoOutput();
+    }
+    // A texture so named only warns, as an unreadable one does.
+    write("long.mtl", "newmtl a\nshader 2\nKd 0.5\nmap_Kd " + longName + ".png\n");
+    write("long.obj", "mtllib long.mtl\nusemtl a\n" + kTriangle);
+    CommandRun r = vitrum("render " + path("long.obj") + " --backend cpu --width 8 --height 8 -o " + path("out.png"));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("long.mtl:4:"), std::string::npos) << r.output;
+}
+
 // ------------------------------------------------------------------------------------ device limits
 
 // VITRUM_MAX_BUFFER_BYTES (for tests only, host/gpu/gpu_buffer.cpp) lowers the storage buffer

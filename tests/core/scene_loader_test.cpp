@@ -349,6 +349,26 @@ TEST(SceneMtl, UnknownMaterialAndMissingLibraryWarn) {
     EXPECT_EQ(scene.materials[scene.triangles[0].material].name, "default");
 }
 
+// A file name longer than the file system allows (NAME_MAX, 255 bytes on Linux) cannot be
+// opened: a texture or a library so named is reported like a missing one, never thrown as a
+// file-system error (found by fuzzing, tests/fuzz/regressions/obj_mtl).
+TEST(SceneMtl, NamesLongerThanTheFileSystemAllowsWarnLikeMissingFiles) {
+    fs::path dir = tempDir();
+    const std::string longName(300, 'x');
+    write(dir / "t.mtl", "newmtl textured\nshader 2\nKd 0.5 0.5 0.5\nmap_Kd " + longName + ".png\n");
+    write(dir / "t.obj", "mtllib t.mtl\n" + kTriangleObj.substr(0, 24) + "usemtl textured\nf 1 2 3\n");
+    int before = warningCount();
+    Scene scene = loadScene(dir / "t.obj");
+    EXPECT_EQ(warningCount(), before + 1);
+    EXPECT_EQ(materialNamed(scene, "textured").diffuseTexture, -1);
+
+    write(dir / "l.obj", "mtllib " + longName + ".mtl\n" + kTriangleObj.substr(0, 24) + "usemtl x\nf 1 2 3\n");
+    before = warningCount();
+    scene = loadScene(dir / "l.obj");
+    EXPECT_GE(warningCount(), before + 1);
+    EXPECT_EQ(scene.materials[scene.triangles[0].material].name, "default");
+}
+
 // --------------------------------------------------------------------------------------- JSON
 
 TEST(SceneJson, EveryFieldRoundTrips) {
