@@ -1,8 +1,10 @@
 // Decisions of docs/render-model-decisions.md that the render model leaves open, each pinned on
 // both backends by a value worked out by hand: ambient light, texture orientation, the Fresnel
-// term and the highlight of the opaque dielectric, and a ray that leaves the scene inside an
-// absorbing medium.
+// term and the highlight of the opaque dielectric, a ray that leaves the scene inside an
+// absorbing medium, and which material an object's medium is.
 #include "gpu_test_support.h"
+
+#include <cmath>
 
 #include "../support/scenes_in_code.h"
 
@@ -118,6 +120,30 @@ TEST(ShadingDecisions, EscapingInsideAnAbsorbingMediumKeepsOnlyTheClearChannels)
     expectEveryPixel(r.cpu, {0.04, 1.0, 1.0}, 1e-5, "cpu");
     EXPECT_EQ(r.gpuStats.absorbedEscapes, 81u);
     EXPECT_EQ(r.cpuStats.absorbedEscapes, 81u);
+}
+
+// An object's medium is the material of its first glass triangle. A box (y from -1 to 1) whose
+// first triangle, on its bottom face, is an absorbing glass (Tf 1 0 0) and all others clear glass
+// of the same Ni 1.5, seen head-on through its clear faces against a white background at
+// max_depth 3: 0.04 reflected at the front, and 0.96 x 0.96 through both faces, attenuated over
+// the 2 units inside by the absorbing glass's Tf: red 0.04 + 0.9216 e^-2, green and blue 0.9616.
+TEST(ShadingDecisions, AnObjectsMediumIsItsFirstGlassTriangles) {
+    Scene scene = baseScene();
+    Material clear = makeMaterial(MaterialModel::Glass, {}, {});
+    Material absorbing = clear;
+    absorbing.attenuation = {1.0f, 0.0f, 0.0f};
+    scene.materials = {clear, absorbing};
+    scene.objectNames = {"box"};
+    addBox(scene, glm::vec3(-1.0f), glm::vec3(1.0f), 0, 0);
+    scene.triangles[0].material = 1;
+    ASSERT_EQ(scene.triangles[0].position[0].z, -1.0f);  // on the bottom face, out of the centre ray's way
+    scene.background.colour = glm::vec3(1.0f);
+    scene.settings.maxDepth = 3;
+    scene.settings.fresnel = FresnelModel::Exact;
+    RenderPair r = renderBoth(scene);
+    const glm::dvec3 expected(0.04 + 0.9216 * std::exp(-2.0), 0.04 + 0.9216, 0.04 + 0.9216);
+    for (const Image* image : {&r.gpu, &r.cpu})
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(image->at(4, 4)[c], expected[c], 1e-5) << c;
 }
 
 }  // namespace
