@@ -1,10 +1,12 @@
 // Decisions of docs/render-model-decisions.md that the render model leaves open, each pinned on
 // both backends by a value worked out by hand: ambient light, texture orientation, the Fresnel
 // term and the highlight of the opaque dielectric, a ray that leaves the scene inside an
-// absorbing medium, and which material an object's medium is.
+// absorbing medium, which material an object's medium is, and glass whose shading normal faces
+// the wrong way.
 #include "gpu_test_support.h"
 
 #include <cmath>
+#include <utility>
 
 #include "../support/scenes_in_code.h"
 
@@ -144,6 +146,31 @@ TEST(ShadingDecisions, AnObjectsMediumIsItsFirstGlassTriangles) {
     const glm::dvec3 expected(0.04 + 0.9216 * std::exp(-2.0), 0.04 + 0.9216, 0.04 + 0.9216);
     for (const Image* image : {&r.gpu, &r.cpu})
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(image->at(4, 4)[c], expected[c], 1e-5) << c;
+}
+
+// Glass whose shading normal, taken on the incoming side, still faces along the ray (vertex
+// normals bent past 90 degrees) is shaded with its geometric normal instead: a glass sheet whose
+// vertex normals all point to (0.3, 1, 0), away from the camera and along every camera ray (the
+// rays are within 20 degrees of +y), renders as the same sheet with its own normals, in front
+// of a lit wall it refracts.
+TEST(ShadingDecisions, GlassWithItsShadingNormalOnTheWrongSideUsesTheGeometricOne) {
+    Scene plain = wallOf(makeMaterial(MaterialModel::Glass, {}, {}));
+    plain.materials.push_back(makeMaterial(MaterialModel::Lambert, {0.1f, 0.1f, 0.1f}, {0.5f, 0.6f, 0.7f}));
+    plain.objectNames.push_back("backdrop");
+    addSquareY(plain, {0, 3, 0}, 30.0f, true, 1, 1);
+    plain.lights.push_back({{0.5f, 2, 0.5f}, {1, 1, 1}, false});  // between the sheet and the wall
+    plain.settings.fresnel = FresnelModel::Exact;
+    Scene bent = plain;
+    for (Triangle& t : bent.triangles)
+        if (t.object == 0)
+            for (glm::vec3& n : t.normal) n = glm::normalize(glm::vec3(0.3f, 1.0f, 0.0f));
+    RenderPair a = renderBoth(plain);
+    RenderPair b = renderBoth(bent);
+    for (auto [x, y] : {std::pair{&a.gpu, &b.gpu}, std::pair{&a.cpu, &b.cpu}}) {
+        const ImageDiff d = diffImages(*x, *y);
+        EXPECT_LE(d.maxAbsError, 1e-5) << "psnr " << d.psnr;
+    }
+    expectImagesMatch(b);
 }
 
 }  // namespace
