@@ -13,6 +13,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -154,33 +155,50 @@ Image readPfm(const fs::path& path) {
 
 // ---- stb ----------------------------------------------------------------------------------------
 
+// The whole file, for stb to decode from memory: stb 2.27 rewinds a FILE only within its first
+// 128-byte buffer, so a format test that reads further left the next test looking at the middle
+// of the file (its PNM reader, with its 16-bit bugs, found "P5" at byte 128; found by fuzzing).
+struct FileBytes {
+    std::vector<unsigned char> bytes;
+    int size() const { return int(bytes.size()); }
+    const unsigned char* data() const { return bytes.data(); }
+};
+
+FileBytes readFileBytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw inputError(path, 0, std::string("cannot open image: ") + std::strerror(errno));
+    FileBytes file{{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()}};
+    if (in.bad()) throw inputError(path, 0, "cannot read image");
+    if (file.bytes.size() > std::size_t(std::numeric_limits<int>::max()))
+        throw inputError(path, 0, "image file too large (2 GiB at most)");
+    return file;
+}
+
 // stb decodes whatever size a header declares, reading zeros past the end of a truncated file:
 // 137 bytes of TGA can ask for 256 x 65535 pixels (found by fuzzing, tests/fuzz/regressions/image).
 // So the declared size is checked first: at most 16384 pixels on a side (the largest image vitrum
 // renders), and at most 8192 pixels per byte of file beyond the first 2^20 pixels (about what the
 // densest deflate stream of a 1-bit PNG holds).
-void checkDeclaredSize(const fs::path& path) {
+void checkDeclaredSize(const fs::path& path, const FileBytes& file) {
     int w = 0;
     int h = 0;
     int n = 0;
-    if (!stbi_info(path.string().c_str(), &w, &h, &n)) return;  // stbi_load reports why
-    std::error_code ec;
-    const std::uintmax_t bytes = fs::file_size(path, ec);
+    if (!stbi_info_from_memory(file.data(), file.size(), &w, &h, &n)) return;  // stbi_load reports why
     const std::uint64_t pixels = std::uint64_t(std::max(w, 0)) * std::uint64_t(std::max(h, 0));
     if (w > 16384 || h > 16384)
         throw inputError(path, 0, "image too large: " + std::to_string(w) + "x" + std::to_string(h) +
                                       " (at most 16384 pixels on a side)");
-    if (!ec && pixels > (std::uint64_t(1) << 20) + std::uint64_t(bytes) * 8192)
+    if (pixels > (std::uint64_t(1) << 20) + std::uint64_t(file.size()) * 8192)
         throw inputError(path, 0, "corrupt or truncated image: its header declares " + std::to_string(w) + "x" +
-                                      std::to_string(h) + " pixels, but the file has only " + std::to_string(bytes) +
-                                      " bytes");
+                                      std::to_string(h) + " pixels, but the file has only " +
+                                      std::to_string(file.size()) + " bytes");
 }
 
-Image readLinearHdr(const fs::path& path) {
+Image readLinearHdr(const fs::path& path, const FileBytes& file) {
     int w = 0;
     int h = 0;
     int n = 0;
-    float* data = stbi_loadf(path.string().c_str(), &w, &h, &n, 3);
+    float* data = stbi_loadf_from_memory(file.data(), file.size(), &w, &h, &n, 3);
     if (!data) throw inputError(path, 0, "cannot read image: " + stbReason());
     Image image(static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h));
     bool nonFinite = false;
@@ -199,13 +217,12 @@ Image readLinearHdr(const fs::path& path) {
     return image;
 }
 
-Image readSrgb(const fs::path& path) {
-    const std::string name = path.string();
+Image readSrgb(const fs::path& path, const FileBytes& file) {
     int w = 0;
     int h = 0;
     int n = 0;
-    if (stbi_is_16_bit(name.c_str())) {
-        stbi_us* data = stbi_load_16(name.c_str(), &w, &h, &n, 3);
+    if (stbi_is_16_bit_from_memory(file.data(), file.size())) {
+        stbi_us* data = stbi_load_16_from_memory(file.data(), file.size(), &w, &h, &n, 3);
         if (!data) throw inputError(path, 0, "cannot read image: " + stbReason());
         Image image(static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h));
         for (std::size_t i = 0; i < image.pixels.size(); ++i) {
@@ -214,7 +231,7 @@ Image readSrgb(const fs::path& path) {
         stbi_image_free(data);
         return image;
     }
-    stbi_uc* data = stbi_load(name.c_str(), &w, &h, &n, 3);
+    stbi_uc* data = stbi_load_from_memory(file.data(), file.size(), &w, &h, &n, 3);
     if (!data) throw inputError(path, 0, "cannot read image: " + stbReason());
     float table[256];
     for (int i = 0; i < 256; ++i) table[i] = srgbToLinear(float(i) / 255.0f);
@@ -308,12 +325,13 @@ Image readImage(const fs::path& path) {
     if (ext == ".exr") return readOpenExr(path);
     // Decide by content between linear Radiance HDR and sRGB 8/16-bit images, so a misnamed
     // .hdr is never gamma-converted by stb (and a .hdr that is not one is reported).
-    const bool isHdr = stbi_is_hdr(path.string().c_str()) != 0;
+    const FileBytes file = readFileBytes(path);
+    const bool isHdr = stbi_is_hdr_from_memory(file.data(), file.size()) != 0;
     if (ext == ".hdr" && !isHdr) throw inputError(path, 0, "cannot read image: not a Radiance HDR file");
     if (isBinaryPnm(path)) return readPnm(path);
-    checkDeclaredSize(path);
-    if (isHdr) return readLinearHdr(path);
-    return readSrgb(path);
+    checkDeclaredSize(path, file);
+    if (isHdr) return readLinearHdr(path, file);
+    return readSrgb(path, file);
 }
 
 }  // namespace vitrum

@@ -47,6 +47,7 @@ std::string_view firstWord(std::string_view line, std::size_t* end = nullptr) {
 // line numbers for its own checks, so vertex lines are checked here first. Also notes the
 // mtllib and usemtl statements, and a line that can hold an inserted mtllib statement.
 struct ObjScan {
+    std::vector<std::size_t> skinWeights;  // where each "vw" statement begins
     bool hasMtllib = false;
     std::vector<std::string> usemtlNames;
     std::size_t freeLineBegin = std::string::npos, freeLineEnd = 0;  // a blank or comment line before any usemtl
@@ -103,6 +104,8 @@ ObjScan scanObj(const fs::path& file, std::string_view text) {
                 }
                 rest = rest.substr(cornerEnd);
             }
+        } else if (word == "vw") {
+            scan.skinWeights.push_back(begin + std::size_t(word.data() - line.data()));
         } else if (word == "mtllib") {
             scan.hasMtllib = true;
         } else if (word == "usemtl") {
@@ -199,6 +202,12 @@ std::uint32_t ObjLoader::defaultMaterialIndex() {
 void ObjLoader::load(const fs::path& objFile, const ObjOptions& options) {
     std::string text = readText(objFile);
     ObjScan scan = scanObj(objFile, text);
+    // Skin weights ("vw", tinyobjloader's extension of OBJ) mean nothing to a ray tracer, and
+    // tinyobjloader converts their joint numbers to int unchecked (undefined behaviour beyond
+    // the int range, found by fuzzing): they become comments, and the lines keep their numbers.
+    for (std::size_t at : scan.skinWeights) text[at] = '#';
+    if (!scan.skinWeights.empty())
+        warn(objFile.string() + ": " + std::to_string(scan.skinWeights.size()) + " skin weight (vw) lines ignored");
     if (options.mtlOverride && !scan.hasMtllib) {
         // The override comes in through tinyobj's mtllib hook: give it an mtllib statement on a
         // free line, so that tinyobj's line numbers stay those of the file.

@@ -132,6 +132,18 @@ TEST(SceneObj, NonFiniteCoordinatesAreErrorsWithLine) {
     expectInputError([&] { loadScene(obj); }, {"words.obj:2:", "v expects three numbers"});
 }
 
+// Skin weights ("vw", tinyobjloader's extension) are ignored with one warning: tinyobjloader
+// converts their joint numbers to int unchecked, undefined beyond the int range (found by fuzzing).
+TEST(SceneObj, SkinWeightLinesAreIgnoredWithAWarning) {
+    fs::path dir = tempDir();
+    write(dir / "w.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 0 99999999999 0.5 1 0.5\n  vw 1 0 1\nf 1 2 3\n");
+    const int before = warningCount();
+    Scene scene = loadScene(dir / "w.obj");
+    EXPECT_EQ(warningCount(), before + 1);
+    ASSERT_EQ(scene.triangles.size(), 1u);
+    EXPECT_EQ(scene.triangles[0].position[1], glm::vec3(1, 0, 0));
+}
+
 TEST(SceneObj, MissingEmptyAndGarbageFiles) {
     fs::path dir = tempDir();
     expectInputError([&] { loadScene(dir / "missing.obj"); }, {"missing.obj", "cannot open"});
