@@ -498,7 +498,9 @@ void scatter(GpuMaterial m) {
     PendingRay next = matched ? childRay(transmittedOrigin, d, w, media, count, depth)
                               : childRay(offsetRayOrigin(p, facing), reflectDirection(d, n), mirror ? w * m.specular.xyz : w * r,
                                          st.ray.media, mediaCount(st.ray), depth + 1u);
-    if (admitChild(rayDepth(next), next.weight.xyz)) {
+    // An index-matched continuation is the same ray going on at its own depth, not a new branch:
+    // neither max_depth nor min_weight stops it (as on the CPU).
+    if (matched || admitChild(rayDepth(next), next.weight.xyz)) {
         if (!matched) gReflectionRays += 1u;
         st.ray = next;
         beginRay();

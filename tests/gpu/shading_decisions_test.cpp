@@ -173,5 +173,30 @@ TEST(ShadingDecisions, GlassWithItsShadingNormalOnTheWrongSideUsesTheGeometricOn
     expectImagesMatch(b);
 }
 
+// An index-matched continuation is the same ray going on, not a new branch: min_weight does not
+// cut it. Two touching glass boxes of Ni 1.5 and mu 3 (y from -1 to 0 and from 0 to 1), and in
+// the second a Lambert box (Ka 1) whose face at y = 0.4 the centre ray meets, lit only by ambient
+// (the glass shadows it). At min_weight 0.1 the ray crosses the shared face with weight 0.96 e^-3
+// = 0.048, below it, and reaches the Lambert face with 0.96 e^-4.2: that is the pixel on a black
+// background (the front face's reflection, 0.04, is cut).
+TEST(ShadingDecisions, MinWeightDoesNotCutAnIndexMatchedContinuation) {
+    Scene scene = baseScene();
+    Material glass = makeMaterial(MaterialModel::Glass, {}, {});
+    glass.attenuation = glm::vec3(3.0f);
+    scene.materials = {glass, makeMaterial(MaterialModel::Lambert, {1, 1, 1}, {0.5f, 0.5f, 0.5f})};
+    scene.objectNames = {"front", "back", "inside"};
+    addBox(scene, {-1, -1, -1}, {1, 0, 1}, 0, 0);
+    addBox(scene, {-1, 0, -1}, {1, 1, 1}, 0, 1);
+    addBox(scene, {-0.3f, 0.4f, -0.3f}, {0.3f, 0.6f, 0.3f}, 1, 2);
+    scene.lights.push_back({{0, -5, 0}, {1, 1, 1}, false});
+    scene.background.colour = glm::vec3(0.0f);
+    scene.settings.fresnel = FresnelModel::Exact;
+    scene.settings.minWeight = 0.1f;
+    RenderPair r = renderBoth(scene);
+    for (const Image* image : {&r.gpu, &r.cpu})
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(image->at(4, 4)[c], 0.96 * std::exp(-4.2), 1e-6) << c;
+    EXPECT_GT(r.gpuStats.touchingInterfaces, 0u);
+}
+
 }  // namespace
 }  // namespace vitrum::testing
