@@ -12,7 +12,6 @@
 #include "gpu/trace_pipeline.h"
 #include "gpu/vulkan_device.h"
 #include "image/image_diff.h"
-#include "render/camera_medium.h"
 #include "render/scene_features.h"
 #include "render/trace_specialization.h"
 #include "scene/scene_names.h"
@@ -76,7 +75,7 @@ int infoCommand(int argc, char** argv, int first) {
                 c.from.y, c.from.z, c.at.x, c.at.y, c.at.z, c.up.x, c.up.y, c.up.z, c.fovY, c.width, c.height);
     // The media every primary ray starts inside (render/camera_medium.h).
     std::string media;
-    for (std::uint32_t object : cameraMedia(scene))
+    for (std::uint32_t object : features.cameraMedia)
         media += (media.empty() ? "inside " : ", then ") + scene.objectNames[object];
     std::printf("camera medium: %s\n", media.empty() ? "air" : media.c_str());
     std::printf("background: (%g, %g, %g), air IOR %g\n", scene.background.colour.x, scene.background.colour.y,

@@ -25,7 +25,6 @@
 #include "bvh/bvh_traversal.h"
 #include "cpu/optics.h"
 #include "cpu/ray_offset.h"
-#include "render/camera_medium.h"
 #include "render/sampling.h"
 #include "render/scene_features.h"
 
@@ -96,7 +95,7 @@ public:
           bvh_(bvh),
           vertices_(packTriangleVertices(bvh, scene.triangles)),
           mediumMaterials_(objectMediumMaterials(scene)),
-          cameraMedia_(cameraMedia(scene)),
+          cameraMedia_(features.cameraMedia),
           maxDepth_(scene.settings.maxDepth),
           touchTolerance_(Real(features.touchingDistance)),
           touchingPossible_(features.touchingMediaPossible),
@@ -413,7 +412,7 @@ private:
     const Bvh& bvh_;
     std::vector<gpu::TriangleVertices> vertices_;
     std::vector<std::uint32_t> mediumMaterials_;
-    MediumStack cameraMedia_;  // every primary ray starts inside them (render/camera_medium.h)
+    MediumStack cameraMedia_;  // every primary ray starts inside them (SceneFeatures::cameraMedia)
     std::uint32_t maxDepth_;
     Real touchTolerance_;    // surfaces closer than this along a ray touch
     bool touchingPossible_;  // glass surfaces of two objects close enough to touch (scene_features.h)

@@ -139,6 +139,10 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     // scene has two glass objects; the specialized one has the analysis's answer compiled in
     // (boxes that overlap), so it skips probes that could find nothing.
     p.tuning.z = stats.features.glassObjects >= 2 ? 1.0f : 0.0f;
+    // Every primary ray's medium stack: the media around the camera.
+    const std::vector<std::uint32_t>& cameraMedia = stats.features.cameraMedia;
+    p.pass.x = std::uint32_t(cameraMedia.size());
+    for (std::size_t i = 0; i < cameraMedia.size(); ++i) p.cameraMedia[int(i)] = cameraMedia[i];
     const std::uint32_t tilesX = (width + tileWidth - 1) / tileWidth;
     const std::uint32_t tilesY = (height + tileHeight - 1) / tileHeight;
     auto* counterValues = counters.as<std::uint32_t>();

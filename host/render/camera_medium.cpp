@@ -9,7 +9,6 @@
 
 #include "common/error.h"
 #include "render/double_box.h"
-#include "render/scene_features.h"
 #include "shared/gpu_types.h"
 
 namespace vitrum {
@@ -32,8 +31,7 @@ double windingNumber(const std::vector<const Triangle*>& triangles, const glm::d
     return solidAngle / (4.0 * std::numbers::pi);
 }
 
-std::vector<std::uint32_t> cameraMedia(const Scene& scene) {
-    const std::set<std::uint32_t> open = openGlassObjects(scene);
+std::vector<std::uint32_t> cameraMedia(const Scene& scene, const std::set<std::uint32_t>& open) {
     std::map<std::uint32_t, std::vector<const Triangle*>> glassTriangles;
     for (const Triangle& t : scene.triangles)
         if (scene.materials[t.material].model == MaterialModel::Glass && !open.count(t.object))

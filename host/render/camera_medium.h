@@ -8,10 +8,11 @@
 // are ordered as a ray's stack is, innermost last: by the volume of their boxes, the largest
 // first (of two nested closed meshes the inner one has the smaller box). The GPU's stack holds
 // gpu::kMaxMediumDepth media, so only that many innermost ones are kept, with a warning; both
-// backends start from this list.
+// backends start from this list (SceneFeatures::cameraMedia, computed once by analyseScene).
 #pragma once
 
 #include <cstdint>
+#include <set>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -20,8 +21,9 @@
 
 namespace vitrum {
 
-// Object indices (Triangle::object), innermost last; empty: the camera is in air.
-std::vector<std::uint32_t> cameraMedia(const Scene& scene);
+// Object indices (Triangle::object), innermost last; empty: the camera is in air. `open` are the
+// glass objects that are not closed meshes (openGlassObjects in scene_features.h).
+std::vector<std::uint32_t> cameraMedia(const Scene& scene, const std::set<std::uint32_t>& open);
 
 // The winding number of the triangles at `point` (the sum of their signed solid angles over 4 pi).
 double windingNumber(const std::vector<const Triangle*>& triangles, const glm::dvec3& point);

@@ -1,7 +1,6 @@
 #include "render/packed_scene.h"
 
 #include "cpu/ray_offset.h"
-#include "render/camera_medium.h"
 
 #include <bit>
 #include <algorithm>
@@ -90,9 +89,7 @@ gpu::RenderParams makeRenderParams(const Scene& scene, std::uint32_t rootEntry) 
     p.background = glm::vec4(scene.background.colour, scene.airIor);
     p.image = glm::uvec4(camera.width, camera.height, s.samplesPerPixel, s.maxDepth);
     p.counts = glm::uvec4(scene.lights.size(), std::uint32_t(s.fresnel), scene.textures.size(), 0);
-    const std::vector<std::uint32_t> media = cameraMedia(scene);
-    p.pass = glm::uvec4(media.size(), sampleGridColumns(s.samplesPerPixel), 0, 0);
-    for (std::size_t i = 0; i < media.size(); ++i) p.cameraMedia[int(i)] = media[i];
+    p.pass = glm::uvec4(0, sampleGridColumns(s.samplesPerPixel), 0, 0);
     p.tuning = glm::vec4(s.minWeight, 0.0f, 0.0f, 0.0f);
     p.environment = glm::uvec4(std::uint32_t(scene.background.kind), std::uint32_t(s.filter),
                                std::uint32_t(std::max(scene.background.map, 0)), 0);

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "render/camera_medium.h"
 #include "render/double_box.h"
 #include "render/glass_proximity.h"
 #include "scene/scene_names.h"
@@ -127,7 +128,9 @@ SceneFeatures analyseScene(const Scene& scene) {
     // Overlapping boxes say that two objects may touch or one lie in the other; only the
     // triangles tell which (a bubble in a block is nested, never touching).
     f.touchingMediaPossible = mostOverlaps > 0 && findCloseGlassTriangles(scene, margin).found;
-    f.openGlassObjects = std::uint32_t(openGlassObjects(scene).size());
+    const std::set<std::uint32_t> open = openGlassObjects(scene);
+    f.openGlassObjects = std::uint32_t(open.size());
+    f.cameraMedia = cameraMedia(scene, open);
     f.mediumStackDepth = !f.glass ? 0
                          : f.openGlassObjects > 0 ? gpu::kMaxMediumDepth
                                                   : std::min<std::uint32_t>(gpu::kMaxMediumDepth, 1 + mostOverlaps);
@@ -176,6 +179,7 @@ nlohmann::json toJson(const SceneFeatures& f) {
         {"absorbing_media", f.absorbingMedia},
         {"touching_media_possible", f.touchingMediaPossible},
         {"medium_stack_depth", f.mediumStackDepth},
+        {"camera_media", f.cameraMedia},
         {"reflection", f.reflection},
         {"ray_stack_depth", f.rayStackDepth},
         {"shadow_rays", f.shadowRays},

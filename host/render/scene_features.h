@@ -44,6 +44,9 @@ struct SceneFeatures {
     // whose boxes overlap one glass object's box (an upper bound on how deep they nest), capped
     // at the GPU's stack.
     std::uint32_t mediumStackDepth = 0;
+    // The glass objects whose media the camera is inside, innermost last: every primary ray's
+    // medium stack (camera_medium.h).
+    std::vector<std::uint32_t> cameraMedia;
     // Pending rays of a depth-first ray tree: only refractions wait (the reflection of a hit is
     // traced at once), so 0 without glass, else max_depth - 1 (docs/gpu-design.md shows why that
     // suffices), capped at gpu::kRayStackSize.

@@ -7,6 +7,7 @@
 #include "common/error.h"
 #include "glass_scenes.h"
 #include "render/camera_medium.h"
+#include "render/scene_features.h"
 
 #include "../support/test_meshes.h"
 
@@ -51,11 +52,11 @@ TEST(CameraMedium, NestedBoxesAroundTheCameraInnermostLast) {
     addGlassBox(scene, glm::vec3(-0.5f), glm::vec3(0.5f));  // object 4: open, one face missing
     scene.triangles.pop_back();
     scene.camera.from = glm::vec3(0.05f, -0.1f, 0.0f);
-    EXPECT_EQ(cameraMedia(scene), (std::vector<std::uint32_t>{3, 0, 2}));
+    EXPECT_EQ(analyseScene(scene).cameraMedia, (std::vector<std::uint32_t>{3, 0, 2}));
     scene.camera.from = glm::vec3(0.5f, 0.0f, 0.0f);  // in the block, beside the bubble
-    EXPECT_EQ(cameraMedia(scene), (std::vector<std::uint32_t>{3, 0}));
+    EXPECT_EQ(analyseScene(scene).cameraMedia, (std::vector<std::uint32_t>{3, 0}));
     scene.camera.from = glm::vec3(6.0f, 0.0f, 0.0f);  // in air
-    EXPECT_TRUE(cameraMedia(scene).empty());
+    EXPECT_TRUE(analyseScene(scene).cameraMedia.empty());
 }
 
 // The GPU's stack holds four media: a camera inside five nested boxes starts inside the four
@@ -65,7 +66,7 @@ TEST(CameraMedium, MoreMediaThanTheStackHoldsKeepsTheInnermostWithAWarning) {
     for (int i = 0; i < 5; ++i) addGlassBox(scene, glm::vec3(-1.0f - float(i)), glm::vec3(1.0f + float(i)));
     scene.camera.from = glm::vec3(0.0f);
     const int warnings = warningCount();
-    EXPECT_EQ(cameraMedia(scene), (std::vector<std::uint32_t>{3, 2, 1, 0}));
+    EXPECT_EQ(analyseScene(scene).cameraMedia, (std::vector<std::uint32_t>{3, 2, 1, 0}));
     EXPECT_EQ(warningCount(), warnings + 1);
 }
 
