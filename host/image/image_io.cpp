@@ -21,6 +21,7 @@
 #include <stb/stb_image_write.h>
 
 #include "common/error.h"
+#include "image/declared_size.h"
 #include "image/image.h"
 #include "image/openexr_file.h"
 #include "image/pnm_file.h"
@@ -175,23 +176,14 @@ FileBytes readFileBytes(const fs::path& path) {
 }
 
 // stb decodes whatever size a header declares, reading zeros past the end of a truncated file:
-// 137 bytes of TGA can ask for 256 x 65535 pixels (found by fuzzing, tests/fuzz/regressions/image).
-// So the declared size is checked first: at most 16384 pixels on a side (the largest image vitrum
-// renders), and at most 8192 pixels per byte of file beyond the first 2^20 pixels (about what the
-// densest deflate stream of a 1-bit PNG holds).
-void checkDeclaredSize(const fs::path& path, const FileBytes& file) {
+// 137 bytes of TGA can ask for 256 x 65535 pixels (found by fuzzing). So the declared size is
+// checked first (declared_size.h).
+void checkStbDeclaredSize(const fs::path& path, const FileBytes& file) {
     int w = 0;
     int h = 0;
     int n = 0;
     if (!stbi_info_from_memory(file.data(), file.size(), &w, &h, &n)) return;  // stbi_load reports why
-    const std::uint64_t pixels = std::uint64_t(std::max(w, 0)) * std::uint64_t(std::max(h, 0));
-    if (w > 16384 || h > 16384)
-        throw inputError(path, 0, "image too large: " + std::to_string(w) + "x" + std::to_string(h) +
-                                      " (at most 16384 pixels on a side)");
-    if (pixels > (std::uint64_t(1) << 20) + std::uint64_t(file.size()) * 8192)
-        throw inputError(path, 0, "corrupt or truncated image: its header declares " + std::to_string(w) + "x" +
-                                      std::to_string(h) + " pixels, but the file has only " +
-                                      std::to_string(file.size()) + " bytes");
+    checkDeclaredSize(path, "image", std::max(w, 0), std::max(h, 0), std::uint64_t(file.size()));
 }
 
 Image readLinearHdr(const fs::path& path, const FileBytes& file) {
@@ -329,7 +321,7 @@ Image readImage(const fs::path& path) {
     const bool isHdr = stbi_is_hdr_from_memory(file.data(), file.size()) != 0;
     if (ext == ".hdr" && !isHdr) throw inputError(path, 0, "cannot read image: not a Radiance HDR file");
     if (isBinaryPnm(path)) return readPnm(path);
-    checkDeclaredSize(path, file);
+    checkStbDeclaredSize(path, file);
     if (isHdr) return readLinearHdr(path, file);
     return readSrgb(path, file);
 }

@@ -17,17 +17,12 @@
 #include <OpenEXR/openexr.h>
 
 #include "common/error.h"
+#include "image/declared_size.h"
 
 namespace vitrum {
 namespace {
 
 namespace fs = std::filesystem;
-
-// As for the other formats (image_io.cpp): at most 16384 pixels on a side, and at most 8192
-// pixels a byte of file beyond the first 2^20, so that a forged header cannot make the reader
-// allocate gigabytes for a file of a few bytes.
-constexpr std::int64_t kLargestSide = 16384;
-constexpr std::int64_t kPixelsPerByte = 8192;
 
 std::int64_t width(const Imath::Box2i& box) { return std::int64_t(box.max.x) - box.min.x + 1; }
 std::int64_t height(const Imath::Box2i& box) { return std::int64_t(box.max.y) - box.min.y + 1; }
@@ -41,20 +36,14 @@ Imath::Box2i box(const exr_attr_box2i_t& b) {
     return Imath::Box2i(Imath::V2i(b.min.x, b.min.y), Imath::V2i(b.max.x, b.max.y));
 }
 
-// Refuses windows larger than vitrum reads or than the file's bytes can hold.
+// Both windows, the display window (the image vitrum allocates) and the data window (what the
+// reader allocates), within the limits of declared_size.h.
 void checkWindowSizes(const fs::path& path, const Imath::Box2i& display, const Imath::Box2i& data) {
-    auto size = [](const Imath::Box2i& b) { return std::to_string(width(b)) + "x" + std::to_string(height(b)); };
-    if (display.isEmpty() || width(display) > kLargestSide || height(display) > kLargestSide)
-        throw inputError(path, 0, "OpenEXR display window of " + size(display) + " pixels (at most 16384 a side)");
-    if (data.isEmpty()) return;
-    if (width(data) > kLargestSide || height(data) > kLargestSide)
-        throw inputError(path, 0, "OpenEXR data window of " + size(data) + " pixels (at most 16384 a side)");
+    if (display.isEmpty()) throw inputError(path, 0, "OpenEXR display window is empty");
     std::error_code ec;
     const std::uintmax_t bytes = fs::file_size(path, ec);
-    if (!ec && width(data) * height(data) > (std::int64_t(1) << 20) + std::int64_t(bytes) * kPixelsPerByte)
-        throw inputError(path, 0,
-                         "corrupt or truncated OpenEXR file: its header declares " + size(data) +
-                             " pixels, but the file has only " + std::to_string(bytes) + " bytes");
+    checkDeclaredSize(path, "OpenEXR display window", width(display), height(display), ec ? 0 : bytes);
+    if (!data.isEmpty()) checkDeclaredSize(path, "OpenEXR data window", width(data), height(data), ec ? 0 : bytes);
 }
 
 // The first part's windows as the core library parses its header, checked before the C++ reader

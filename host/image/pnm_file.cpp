@@ -11,14 +11,13 @@
 #include <vector>
 
 #include "common/error.h"
+#include "image/declared_size.h"
 #include "image/srgb.h"
 
 namespace vitrum {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr long kLargestSide = 16384;  // as for the other formats (image_io.cpp)
 
 // The next header number: whitespace and '#' comments (to the end of the line) before it, then
 // 1 to 9 digits. `pos` ends on the character after it.
@@ -62,7 +61,7 @@ Image readPnm(const fs::path& path) {
     const long width = headerNumber(bytes, pos, "width", path);
     const long height = headerNumber(bytes, pos, "height", path);
     const long maxval = headerNumber(bytes, pos, "maxval", path);
-    if (width < 1 || height < 1 || width > kLargestSide || height > kLargestSide)
+    if (width < 1 || height < 1 || width > kLargestImageSide || height > kLargestImageSide)
         throw inputError(path, 0,
                          "corrupt PNM file: bad size " + std::to_string(width) + "x" + std::to_string(height) +
                              " (at most 16384 pixels on a side)");

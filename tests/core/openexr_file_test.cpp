@@ -203,6 +203,14 @@ TEST_F(OpenExrTest, OversizedWindowsAreRefusedBeforeReading) {
     EXPECT_NE(wide.find("100000x1"), std::string::npos) << wide;
     EXPECT_NE(wide.find("at most 16384"), std::string::npos) << wide;
 
+    // The display window is the image vitrum allocates: 4096 x 4096 pixels (16.8 M) over one pixel
+    // of data in a file of a few hundred bytes (which the limit puts at about 1 M + 8192 a byte).
+    writeFloatChannels(dir_ / "vast.exr", Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(4095, 4095)), pixel,
+                       {"R", "G", "B"}, [](int, int, int) { return 1.0f; });
+    const std::string vast = inputErrorOf(dir_ / "vast.exr");
+    EXPECT_NE(vast.find("display window of 4096x4096"), std::string::npos) << vast;
+    EXPECT_NE(vast.find("bytes"), std::string::npos) << vast;
+
     // 16384 x 16384 pixels of one constant value compress to a few hundred kilobytes at most, far
     // less than 2^28 pixels need by the limit of 8192 pixels a byte; a header that declares them
     // over a file of a few hundred bytes is refused. It is written by hand: only the data window
