@@ -320,7 +320,7 @@ Image readImage(const fs::path& path) {
     const FileBytes file = readFileBytes(path);
     const bool isHdr = stbi_is_hdr_from_memory(file.data(), file.size()) != 0;
     if (ext == ".hdr" && !isHdr) throw inputError(path, 0, "cannot read image: not a Radiance HDR file");
-    if (isBinaryPnm(path)) return readPnm(path);
+    if (isBinaryPnm(file.bytes)) return readPnm(path, file.bytes);
     checkStbDeclaredSize(path, file);
     if (isHdr) return readLinearHdr(path, file);
     return readSrgb(path, file);

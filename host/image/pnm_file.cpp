@@ -2,11 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cstdint>
-#include <cstring>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -42,20 +38,12 @@ long headerNumber(const std::vector<unsigned char>& bytes, std::size_t& pos, con
 
 }  // namespace
 
-bool isBinaryPnm(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    char magic[2] = {};
-    in.read(magic, 2);
-    return in.gcount() == 2 && magic[0] == 'P' && (magic[1] == '5' || magic[1] == '6');
+bool isBinaryPnm(const std::vector<unsigned char>& bytes) {
+    return bytes.size() >= 2 && bytes[0] == 'P' && (bytes[1] == '5' || bytes[1] == '6');
 }
 
-Image readPnm(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw inputError(path, 0, std::string("cannot open image: ") + std::strerror(errno));
-    const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw inputError(path, 0, "cannot read image");
-    if (bytes.size() < 2 || bytes[0] != 'P' || (bytes[1] != '5' && bytes[1] != '6'))
-        throw inputError(path, 0, "corrupt PNM file: expected the magic 'P5' or 'P6'");
+Image readPnm(const fs::path& path, const std::vector<unsigned char>& bytes) {
+    if (!isBinaryPnm(bytes)) throw inputError(path, 0, "corrupt PNM file: expected the magic 'P5' or 'P6'");
     const std::size_t channels = bytes[1] == '5' ? 1 : 3;
     std::size_t pos = 2;
     const long width = headerNumber(bytes, pos, "width", path);

@@ -9,15 +9,17 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "image/image.h"
 
 namespace vitrum {
 
-// Whether the file starts with "P5" or "P6".
-bool isBinaryPnm(const std::filesystem::path& path);
+// Whether the file's bytes start with "P5" or "P6".
+bool isBinaryPnm(const std::vector<unsigned char>& bytes);
 
-// Throws InputError naming the file for a corrupt or truncated file.
-Image readPnm(const std::filesystem::path& path);
+// The image in the bytes of the file at `path`. Throws InputError naming the file for a corrupt
+// or truncated file.
+Image readPnm(const std::filesystem::path& path, const std::vector<unsigned char>& bytes);
 
 }  // namespace vitrum
