@@ -10,15 +10,11 @@
 
 namespace vitrum {
 
-namespace {
-
 std::filesystem::path temporaryFor(const std::filesystem::path& path) {
     std::filesystem::path temporary = path;
     temporary += ".tmp-" + std::to_string(::getpid());
     return temporary;
 }
-
-}  // namespace
 
 void checkWritable(const std::filesystem::path& path) {
     const std::filesystem::path temporary = temporaryFor(path);

@@ -6,6 +6,10 @@
 
 namespace vitrum {
 
+// The temporary a file is written to before it is renamed to `path`: next to it, named for this
+// process, so two processes writing one output never share it.
+std::filesystem::path temporaryFor(const std::filesystem::path& path);
+
 // Throws InputError naming the file when it cannot be written.
 void writeFileAtomically(const std::filesystem::path& path, const std::string& contents);
 

@@ -2,8 +2,6 @@
 // (sRGB, pnm_file.h), Radiance HDR through stb (linear), PFM by hand (linear), OpenEXR through its
 // library (linear, openexr_file.h). Writes go to a temporary file next to the target that is
 // renamed into place, so a failed write never leaves a partial output behind.
-#include <unistd.h>
-
 #include <algorithm>
 #include <bit>
 #include <cctype>
@@ -20,6 +18,7 @@
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
+#include "common/atomic_file.h"
 #include "common/error.h"
 #include "image/declared_size.h"
 #include "image/image.h"
@@ -288,7 +287,7 @@ void writeImage(const Image& image, const fs::path& path) {
         throw inputError(path, 0, "cannot write image: directory " + parent.string() + " does not exist");
     }
 
-    const fs::path temporary = fs::path(path.string() + ".tmp-" + std::to_string(::getpid()));
+    const fs::path temporary = temporaryFor(path);
     errno = 0;
     std::string reason;
     try {
