@@ -17,6 +17,10 @@ std::filesystem::path temporaryFor(const std::filesystem::path& path) {
 }
 
 void checkWritable(const std::filesystem::path& path) {
+    // The temporary could be written, but renaming it onto a folder fails, after the work.
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw inputError(path, 0, "cannot write the file: a folder has that name");
     const std::filesystem::path temporary = temporaryFor(path);
     errno = 0;
     if (!std::ofstream(temporary, std::ios::binary)) {

@@ -260,6 +260,21 @@ TEST_F(CliBadInput, NamesTooLongForTheFileSystemAreRefusedBeforeRendering) {
     EXPECT_NE(r.output.find("long.mtl:4:"), std::string::npos) << r.output;
 }
 
+// An output named like an existing folder: the temporary could be written, but renaming it onto
+// the folder would fail after the render, so it is refused before.
+TEST_F(CliBadInput, AnOutputNamedLikeAFolderIsRefusedBeforeRendering) {
+    fs::create_directories(dir_ / "folder.png");
+    fs::create_directories(dir_ / "folder.json");
+    for (const std::string& output :
+         {"-o " + path("folder.png"), "-o " + path("out.png") + " --stats " + path("folder.json")}) {
+        CommandRun r = vitrum("render " + path("tri.obj") + " --width 8 --height 8 " + output);
+        EXPECT_EQ(r.exitCode, 1) << r.output;
+        EXPECT_NE(r.output.find("a folder has that name"), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("rays:"), std::string::npos) << "rendered before refusing: " << r.output;
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+}
+
 // ------------------------------------------------------------------------------------ device limits
 
 // VITRUM_MAX_BUFFER_BYTES (for tests only, host/gpu/gpu_buffer.cpp) lowers the storage buffer
