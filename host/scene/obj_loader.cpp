@@ -314,7 +314,8 @@ void ObjLoader::load(const fs::path& objFile, const ObjOptions& options) {
                 }
                 glm::vec3 geometric = glm::cross(t.position[1] - t.position[0], t.position[2] - t.position[0]);
                 float length = glm::length(geometric);
-                // A zero-area triangle is kept (it is never hit); it still gets a valid unit normal.
+                // A zero-area triangle is kept; it still gets a valid unit normal. A repeated corner is never
+                // hit; distinct collinear corners can be, by rounding (docs/hard-cases.md).
                 geometric = length > 0.0f && std::isfinite(length) ? geometric / length : glm::vec3(0.0f, 0.0f, 1.0f);
                 for (int i = 0; i < 3; ++i) {
                     const int ni = mesh.indices[c[i]].normal_index;

@@ -697,6 +697,100 @@ TEST(HardCaseDegenerate, DegenerateGeometryIsCountedNotFatal) {
     EXPECT_NEAR(gpuCount, cpuCount, 0.05 * std::max(gpuCount, cpuCount));
 }
 
+// A triangle whose three corners are distinct but collinear has no geometric normal (the cross
+// product of its edges is exactly 0), yet the watertight test can report a hit by rounding. Seen
+// end on, along a line through the camera, its corners project onto a line through every pixel's
+// ray, so rounding alone decides which pixels hit it. Such a hit takes the interpolated vertex
+// normal as its geometric normal too, or, where that is zero as well, the normal facing the ray
+// (-d): never a NaN. Some pixels hit, on both backends, and every other pixel is the background.
+TEST(HardCaseDegenerate, CollinearTriangleHitByRoundingTakesItsShadingNormalOrFacesTheRay) {
+    constexpr std::uint32_t kWidth = 48, kHeight = 36;
+    Scene scene = emptyScene(kWidth, kHeight, 50.0f);
+    scene.background.colour = vec3(1, 0, 0);
+    scene.objectNames = {"segment", "roof"};
+    // Six such triangles (more pixels hit): corners from + s a, s = 1, 1.5, 3.25, exact in float, so
+    // the edges are exactly parallel. The ratios are not powers of two, so the projected corners
+    // round differently.
+    const vec3 from = scene.camera.from;
+    std::vector<Triangle> segments;
+    for (const auto& [i, j] : {std::pair{1, 2}, {-2, 1}, {3, -1}, {-1, -2}, {2, 3}, {-3, 0}}) {
+        const vec3 a(0.0625f * float(i), 1.0f, 0.125f * float(j));
+        segments.push_back(triangle(from + a, from + 1.5f * a, from + 3.25f * a, 0, 0));
+        const Triangle& t = segments.back();
+        ASSERT_EQ(glm::cross(t.position[1] - t.position[0], t.position[2] - t.position[0]), vec3(0.0f));
+    }
+    auto withNormals = [&](vec3 n) {
+        std::vector<Triangle> result = segments;
+        for (Triangle& t : result)
+            for (vec3& vn : t.normal) vn = n;
+        return result;
+    };
+    auto expectHitsShow = [&](const RenderPair& p, const char* what, auto expectedColour) {
+        for (const auto& [image, backend] : {std::pair{&p.gpu, "gpu"}, std::pair{&p.cpu, "cpu"}}) {
+            std::uint32_t hits = 0;
+            for (std::uint32_t y = 0; y < kHeight; ++y)
+                for (std::uint32_t x = 0; x < kWidth; ++x) {
+                    const vec3 c = image->at(x, y);
+                    if (c == scene.background.colour) continue;
+                    hits += 1;
+                    const glm::dvec3 expected = expectedColour(x, y);
+                    for (int k = 0; k < 3; ++k)
+                        ASSERT_NEAR(c[k], expected[k], 1e-5) << backend << " " << what << ", pixel " << x << ", " << y;
+                }
+            std::cout << backend << " " << what << ": " << hits << " pixels hit the collinear triangles\n";
+            EXPECT_GT(hits, 0u) << backend << " " << what;
+        }
+    };
+
+    // With vertex normals: a Lambert surface under a light that a roof hides (out of the view). The
+    // shadow ray starts off the surface along the geometric normal, here the vertex normal n, and
+    // finds the roof, so each hit shows ambient alone (a NaN normal would send the shadow ray
+    // nowhere and light the pixel).
+    const vec3 n = glm::normalize(vec3(0.0f, -0.6f, 0.8f));  // faces every ray of the view: n.d < -0.2
+    const vec3 ambient(0.1f, 0.2f, 0.3f);
+    scene.materials = {material(MaterialModel::Lambert, vec3(0.8f), 1.5f, ambient)};
+    scene.lights = {{.position = {0, -3, 5}, .colour = vec3(1.0f)}};
+    scene.triangles = withNormals(n);
+    addBox(scene, {-3, -6, 2}, {3, -1, 2.1f}, 0, 1);  // above 26 degrees from the camera: out of view
+    expectHitsShow(renderBoth(scene), "in shadow", [&](std::uint32_t, std::uint32_t) { return glm::dvec3(ambient); });
+
+    // Without: every vertex normal zero, so the hit faces the ray, as the Normal material shows,
+    // (n + 1) / 2 with n = -d; each pixel's direction d worked out in double from the camera model.
+    scene.materials = {material(MaterialModel::Normal)};
+    scene.lights.clear();
+    scene.triangles = withNormals(vec3(0.0f));
+    scene.objectNames = {"segment"};
+    const glm::dvec3 z = glm::normalize(glm::dvec3(scene.camera.from) - glm::dvec3(scene.camera.at));
+    const glm::dvec3 xc = glm::normalize(glm::cross(glm::dvec3(scene.camera.up), z)), yc = glm::cross(z, xc);
+    const double f = kHeight / (2.0 * std::tan(glm::radians(25.0)));
+    expectHitsShow(renderBoth(scene), "facing the ray", [&](std::uint32_t x, std::uint32_t y) {
+        const glm::dvec3 d = glm::normalize((x + 0.5 - kWidth / 2.0) * xc + (kHeight / 2.0 - y - 0.5) * yc - f * z);
+        return (1.0 - d) / 2.0;
+    });
+}
+
+// Vertex normals whose interpolation has no direction (zero, infinite or NaN; scenes built in code
+// can hold them, the loader replaces them): the hit shades with the geometric normal instead, as
+// the Normal material shows on a wall facing the camera, (0, -1, 0) -> (0.5, 0, 0.5) everywhere.
+TEST(HardCaseDegenerate, VertexNormalsWithNoDirectionShadeWithTheGeometricNormal) {
+    Scene scene = emptyScene();
+    scene.background.colour = vec3(1, 0, 0);
+    scene.materials.push_back(material(MaterialModel::Normal));
+    scene.objectNames = {"wall"};
+    scene.triangles.push_back(triangle({-3, 0, -3}, {3, 0, -3}, {3, 0, 3}, 0, 0));  // normal -y
+    scene.triangles.push_back(triangle({-3, 0, -3}, {3, 0, 3}, {-3, 0, 3}, 0, 0));
+    ASSERT_EQ(scene.triangles[0].normal[0], vec3(0, -1, 0));
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    for (const vec3 bad : {vec3(0.0f), vec3(0.0f, -inf, 0.0f), vec3(nan)}) {
+        for (Triangle& t : scene.triangles)
+            for (vec3& n : t.normal) n = bad;
+        RenderPair p = renderBoth(scene);
+        for (const auto& [image, backend] : {std::pair{&p.gpu, "gpu"}, std::pair{&p.cpu, "cpu"}})
+            for (const vec3& c : image->pixels)
+                ASSERT_LE(glm::length(glm::dvec3(c) - glm::dvec3(0.5, 0.0, 0.5)), 1e-6) << backend << " normals " << bad.y;
+    }
+}
+
 // ---- Deep trees and stack limits ------------------------------------------------------------
 
 TEST(HardCaseDeepTree, HallOfGlassAtDepth10StaysFiniteAndReportsTheDepthLimit) {
