@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -54,6 +55,46 @@ inline std::vector<std::uint32_t> kernelPixelOrder(std::uint32_t width, std::uin
 
 }  // namespace detail
 
+// The rays of `rays` (as the reference logged them: each pixel's rays together, in order) one ray a
+// pixel a pass: pass k holds the k-th ray of every pixel that has one, in the kernel's pixel
+// order, or with `sorted` ordered by the kind of ray (shadow or not), its direction's octant and
+// its origin's Morton code, so that neighbouring rays start near one another and go the same way.
+inline std::vector<std::vector<std::size_t>> rayPasses(std::span<const TracedRay> rays, std::uint32_t width,
+                                                       std::uint32_t height, bool sorted) {
+    std::vector<std::vector<std::size_t>> perPixel(std::size_t(width) * height);
+    for (std::size_t i = 0; i < rays.size(); ++i) perPixel[rays[i].pixel].push_back(i);
+    const std::vector<std::uint32_t> order = detail::kernelPixelOrder(width, height);
+    glm::vec3 low(3.0e38f), high(-3.0e38f);
+    for (const TracedRay& r : rays) {
+        low = glm::min(low, r.origin);
+        high = glm::max(high, r.origin);
+    }
+    const glm::vec3 extent = glm::max(high - low, glm::vec3(1e-30f));
+    std::vector<std::uint64_t> sortKeys;
+    if (sorted) {
+        sortKeys.reserve(rays.size());
+        for (const TracedRay& r : rays) {
+            const glm::uvec3 cell(glm::clamp((r.origin - low) / extent, 0.0f, 1.0f) * 1023.0f);
+            const std::uint64_t octant = (r.direction.x < 0) | (r.direction.y < 0) << 1 | (r.direction.z < 0) << 2;
+            const std::uint64_t morton =
+                detail::spreadBits(cell.x) | detail::spreadBits(cell.y) << 1 | detail::spreadBits(cell.z) << 2;
+            sortKeys.push_back(std::uint64_t(r.anyHit) << 40 | octant << 32 | morton);
+        }
+    }
+    std::vector<std::vector<std::size_t>> passes;
+    for (std::size_t k = 0;; ++k) {
+        std::vector<std::size_t> pass;
+        for (std::uint32_t pixel : order)
+            if (k < perPixel[pixel].size()) pass.push_back(perPixel[pixel][k]);
+        if (pass.empty()) break;
+        if (sorted)
+            std::stable_sort(pass.begin(), pass.end(),
+                             [&](std::size_t a, std::size_t b) { return sortKeys[a] < sortKeys[b]; });
+        passes.push_back(std::move(pass));
+    }
+    return passes;
+}
+
 // `rays` as the reference logged them (each pixel's rays together, in order), `steps[i]` what
 // tracing ray i costs (for example node visits + triangle tests + 1). Each fill is the lanes' steps
 // over the steps their groups run: 1 when no lane ever waits.
@@ -93,32 +134,9 @@ inline ScheduleFill scheduleFill(std::span<const TracedRay> rays, std::span<cons
         }
         return cost;
     };
-    glm::vec3 low(3.0e38f), high(-3.0e38f);
-    for (const TracedRay& r : rays) {
-        low = glm::min(low, r.origin);
-        high = glm::max(high, r.origin);
-    }
-    const glm::vec3 extent = glm::max(high - low, glm::vec3(1e-30f));
-    std::vector<std::uint64_t> sortKeys;
-    sortKeys.reserve(rays.size());
-    for (const TracedRay& r : rays) {
-        const glm::uvec3 cell(glm::clamp((r.origin - low) / extent, 0.0f, 1.0f) * 1023.0f);
-        const std::uint64_t octant = (r.direction.x < 0) | (r.direction.y < 0) << 1 | (r.direction.z < 0) << 2;
-        const std::uint64_t morton =
-            detail::spreadBits(cell.x) | detail::spreadBits(cell.y) << 1 | detail::spreadBits(cell.z) << 2;
-        sortKeys.push_back(std::uint64_t(r.anyHit) << 40 | octant << 32 | morton);
-    }
     double compactedCost = 0, sortedCost = 0;
-    for (std::size_t k = 0;; ++k) {
-        std::vector<std::size_t> pass;
-        for (std::uint32_t pixel : order)
-            if (k < perPixel[pixel].size()) pass.push_back(perPixel[pixel][k]);
-        if (pass.empty()) break;
-        compactedCost += packedCost(pass);
-        std::stable_sort(pass.begin(), pass.end(),
-                         [&](std::size_t a, std::size_t b) { return sortKeys[a] < sortKeys[b]; });
-        sortedCost += packedCost(pass);
-    }
+    for (const std::vector<std::size_t>& pass : rayPasses(rays, width, height, false)) compactedCost += packedCost(pass);
+    for (const std::vector<std::size_t>& pass : rayPasses(rays, width, height, true)) sortedCost += packedCost(pass);
     const double laneSteps = total / double(lanes);
     return {laneSteps / kernelCost, laneSteps / compactedCost, laneSteps / sortedCost};
 }

@@ -1,0 +1,72 @@
+#version 460
+// Traversal alone, for bench/whitted_bench.cpp: each invocation traces one ray of a list with
+// vitrum's own traversal (shaders/bvh.glsl, as trace.comp runs it: closest hit, or any hit for a
+// shadow ray) and writes what it found. No shading, no pixel state, no pending rays: what the
+// trace pass of a wavefront renderer, one kernel a kind of work, would cost for the same rays.
+#extension GL_GOOGLE_include_directive : require
+
+#include "shared/gpu_types.h"
+
+layout(local_size_x = 64) in;
+
+// The scene as trace.comp reads it (shaders/bindings.glsl), and the rays: two texels a ray,
+// (origin, tMin) and (direction, tMax), tMax negative for a shadow ray (any hit in (tMin, -tMax)).
+layout(set = 0, binding = 0, rgba32ui) uniform readonly uimageBuffer nodeTexels;
+layout(set = 0, binding = 1, rgba32ui) uniform readonly uimageBuffer vertexTexels;
+layout(set = 0, binding = 2, rgba32ui) uniform readonly uimageBuffer rayTexels;
+// .x = the root entry, .y = the rays.
+layout(std430, set = 0, binding = 3) readonly buffer Control { uvec4 control; };
+// A ray's result: .x = the hit's t, -1 for none; .y = the triangle (bits); .z = 1 when the
+// traversal is over; .w = the group's steps.
+layout(std430, set = 0, binding = 4) writeonly buffer Hits { vec4 hits[]; };
+
+#define fetchVec4(texels, first, k) uintBitsToFloat(imageLoad(texels, int((first) + (k))))
+
+TraversalNode loadTraversalNode(uint i) {
+    uint first = kTraversalNodeTexels * i;
+    return TraversalNode(fetchVec4(nodeTexels, first, 0u), fetchVec4(nodeTexels, first, 1u),
+                         fetchVec4(nodeTexels, first, 2u), fetchVec4(nodeTexels, first, 3u));
+}
+
+TriangleVertices loadTriangle(uint i) {
+    uint first = kTriangleVerticesTexels * i;
+    return TriangleVertices(fetchVec4(vertexTexels, first, 0u), fetchVec4(vertexTexels, first, 1u),
+                            fetchVec4(vertexTexels, first, 2u));
+}
+
+// What bvh.glsl reads of trace.comp: the features (a shadow ray ends at its first hit; no
+// touching probe; full subgroups, which the bench asks for when it creates the pipeline; a
+// traversal that is never resumed), the parameters, the state and the counters.
+const bool kShadowRays = true;
+const bool kTouchingProbe = false;
+const bool kResumable = false;
+const bool kFullSubgroups = true;
+RenderParams params;
+TraceState st;
+uint gStack[kTraversalStackSize];
+uint gPixelSteps = 0u;
+uint gNodeVisits = 0u;
+uint gTraversalOverflows = 0u;
+uint gMediumStackOverflows = 0u;
+
+#include "bvh.glsl"
+
+void main() {
+    uint i = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+    bool tracing = i < control.y;
+    uint ray = tracing ? i : 0u;
+    params.bvh = uvec4(control.x, 0u, 0u, 0u);
+    params.tuning = vec4(0.0);
+    vec4 origin = fetchVec4(rayTexels, 2u * ray, 0u);
+    vec4 direction = fetchVec4(rayTexels, 2u * ray, 1u);
+    bool anyHit = direction.w < 0.0;
+    beginTraversal(origin.xyz, direction.xyz, origin.w, abs(direction.w));
+    // Every lane of the subgroup calls traverse (its group maxima read every lane); lavapipe's
+    // limit of 65,535 iterations a SIMD group is far above one ray's steps, and the host checks
+    // that every traversal is over.
+    uint steps = 0u;
+    bool over = traverse(anyHit ? kTraverseAny : kTraverseClosest, tracing, steps, 60000u);
+    if (!tracing) return;
+    bool found = st.traversal.z != kNoTriangle;
+    hits[i] = vec4(found ? st.traceDirection.w : -1.0, uintBitsToFloat(st.traversal.z), over ? 1.0 : 0.0, float(steps));
+}

@@ -1,0 +1,79 @@
+// Traversal alone on the device (bench/trace_only/trace_rays.comp): a list of rays traced with
+// vitrum's own traversal, one ray an invocation, nothing else. bench/whitted_bench.cpp times it
+// on the Whitted workload's rays, in the order a wavefront renderer would trace them, to measure
+// what such a renderer's trace passes would cost against the whole kernel and Embree.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <vector>
+
+#include "bvh/bvh.h"
+#include "cpu/reference_renderer.h"
+#include "gpu/compute_pipeline.h"
+#include "gpu/gpu_buffer.h"
+#include "gpu/vulkan_device.h"
+#include "render/traversal_nodes.h"
+#include "trace_rays.spv.h"
+
+namespace vitrum::bench {
+
+class TraceOnlyKernel {
+public:
+    // `order`: the rays to trace, in the order the kernel's invocations take them.
+    TraceOnlyKernel(const VulkanDevice& device, const TraversalNodes& tree,
+                    std::span<const gpu::TriangleVertices> triangles, std::span<const TracedRay> rays,
+                    std::span<const std::size_t> order)
+        : pipeline_(device, std::span<const std::uint32_t>(trace_rays_spv),
+                    std::array<VkDescriptorType, 5>{VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER,
+                                                    VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER,
+                                                    VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER,
+                                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                    nullptr, VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT_EXT),
+          count_(std::uint32_t(order.size())) {
+        if (!device.subgroups().fullSubgroups) throw std::runtime_error("the trace-only kernel needs full subgroups");
+        std::vector<glm::vec4> texels;
+        texels.reserve(2 * order.size());
+        for (std::size_t i : order) {
+            const TracedRay& r = rays[i];
+            texels.emplace_back(r.origin, r.tMin);
+            texels.emplace_back(r.direction, r.anyHit ? -r.tMax : r.tMax);
+        }
+        const std::vector<gpu::TraversalNode> nodes =
+            tree.nodes.empty() ? std::vector<gpu::TraversalNode>(1) : tree.nodes;
+        nodes_ = makeTexelBuffer(device, std::span<const gpu::TraversalNode>(nodes), "trace-only nodes");
+        triangles_ = makeTexelBuffer(device, triangles, "trace-only triangles");
+        rays_ = makeTexelBuffer(device, std::span<const glm::vec4>(texels), "trace-only rays");
+        const glm::uvec4 control(tree.rootEntry, count_, 0u, 0u);
+        control_ = makeStorageBuffer(device, std::span<const glm::uvec4>(&control, 1), "trace-only control");
+        hits_ = GpuBuffer(device, std::max<VkDeviceSize>(16, VkDeviceSize(count_) * sizeof(glm::vec4)),
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "trace-only hits");
+        const std::array<const GpuBuffer*, 5> bound = {&nodes_, &triangles_, &rays_, &control_, &hits_};
+        pipeline_.bind(bound);
+    }
+
+    // Seconds to trace every ray once (the first call includes lavapipe's compile).
+    double trace(VulkanDevice& device) const {
+        constexpr std::uint32_t kGroupSize = 64, kMaxGroupsX = 32768;
+        const std::uint32_t groups = (count_ + kGroupSize - 1) / kGroupSize;
+        const std::uint32_t groupsX = std::min(groups, kMaxGroupsX);
+        const std::uint32_t groupsY = (groups + groupsX - 1) / groupsX;
+        const auto start = std::chrono::steady_clock::now();
+        device.submitAndWait([&](VkCommandBuffer commands) { pipeline_.record(commands, groupsX, groupsY); });
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+
+    // Ray k of `order`: .x = the closest (or some) hit's t, or -1; .z = 1 when its traversal is
+    // over; .w = the steps its SIMD group ran.
+    const glm::vec4& hit(std::size_t k) const { return hits_.as<glm::vec4>()[k]; }
+
+private:
+    ComputePipeline pipeline_;
+    GpuBuffer nodes_, triangles_, rays_, control_, hits_;
+    std::uint32_t count_;
+};
+
+}  // namespace vitrum::bench
