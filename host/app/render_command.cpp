@@ -44,7 +44,7 @@ Renders SCENE (a .json scene file or a bare .obj) and writes OUT: .png (8-bit sR
   --camera-from X,Y,Z      camera position
   --camera-at X,Y,Z        camera target
   --camera-up X,Y,Z        camera up vector
-  --fov DEG                vertical field of view in degrees (0..180, exclusive)
+  --fov DEG                vertical field of view in degrees (0.5..179.5, exclusive)
   --light X,Y,Z            a white point light; repeatable; replaces the scene's lights
   --background R,G,B       constant background colour, linear RGB
   --stats FILE.json        write device, times by phase, rays by kind and limits hit
@@ -124,7 +124,7 @@ RenderCommand parse(int argc, char** argv, int first) {
         else if (flag == "--camera-up") c.up = Arguments::toVec3(flag, args.valueOf(flag));
         else if (flag == "--fov") {
             float f = Arguments::toFloat(flag, args.valueOf(flag));
-            if (!(f > 0.0f && f < 180.0f)) throw InputError("--fov must be between 0 and 180 degrees (exclusive)");
+            if (!validFovY(f)) throw InputError("--fov must be between 0.5 and 179.5 degrees (exclusive)");
             c.fov = f;
         } else if (flag == "--light") c.lights.push_back(Arguments::toVec3(flag, args.valueOf(flag)));
         else if (flag == "--background") {

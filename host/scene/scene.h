@@ -55,6 +55,11 @@ struct PointLight {
     bool inverseSquare = false;
 };
 
+// The vertical field of view a camera may have, in degrees, exclusive: wide enough to see through
+// a keyhole, short of the 180 degrees at which the image plane would be infinitely large.
+constexpr double kMinFovY = 0.5, kMaxFovY = 179.5;
+inline bool validFovY(double degrees) { return degrees > kMinFovY && degrees < kMaxFovY; }
+
 struct Camera {
     glm::vec3 from{0.0f, -5.0f, 0.0f};
     glm::vec3 at{0.0f};

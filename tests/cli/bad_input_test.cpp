@@ -156,6 +156,7 @@ TEST_F(CliBadInput, AbsurdValuesInTheSceneFileNameTheKey) {
         std::string line, key;
     };
     for (const Case& c : {Case{camera + R"("fov_y": 0})", "fov_y"}, Case{camera + R"("fov_y": 180})", "fov_y"},
+                          Case{camera + R"("fov_y": 0.4})", "fov_y"},
                           Case{camera + R"("width": 0})", "width"}, Case{camera + R"("width": 1000000})", "width"},
                           Case{camera + R"("height": -3})", "height"}, Case{R"("render": {"max_depth": -1})", "max_depth"},
                           Case{R"("render": {"spp": 0})", "spp"}, Case{R"("render": {"spp": 1e9})", "spp"},
@@ -166,7 +167,7 @@ TEST_F(CliBadInput, AbsurdValuesInTheSceneFileNameTheKey) {
 
 TEST_F(CliBadInput, AbsurdValuesOnTheCommandLineNameTheOption) {
     for (std::string option : {"--width 0", "--height 0", "--width 1000000", "--spp 0", "--max-depth -1",
-                               "--fov 0", "--fov 180", "--spp 1e3", "--threads 0", "--tile 1"}) {
+                               "--fov 0", "--fov 0.4", "--fov 179.6", "--spp 1e3", "--threads 0", "--tile 1"}) {
         expectRefused(kGeosphere + " --backend cpu " + option, {option.substr(0, option.find(' '))});
     }
 }
