@@ -95,6 +95,30 @@ inline std::vector<std::vector<std::size_t>> rayPasses(std::span<const TracedRay
     return passes;
 }
 
+// An index in kernelSchedule's order that holds no ray: a lane with nothing to trace.
+constexpr std::size_t kIdleLane = ~std::size_t(0);
+
+// The rays as trace.comp's lanes trace them: a lane a pixel, `lanes` pixels a group in the
+// kernel's pixel order, round k of a group the k-th ray of each of its lanes, kIdleLane for a
+// lane whose pixel has no k-th ray. Every group's rounds are `lanes` entries each.
+inline std::vector<std::size_t> kernelSchedule(std::span<const TracedRay> rays, std::uint32_t width,
+                                               std::uint32_t height, std::uint32_t lanes) {
+    std::vector<std::vector<std::size_t>> perPixel(std::size_t(width) * height);
+    for (std::size_t i = 0; i < rays.size(); ++i) perPixel[rays[i].pixel].push_back(i);
+    const std::vector<std::uint32_t> order = detail::kernelPixelOrder(width, height);
+    std::vector<std::size_t> schedule;
+    for (std::size_t first = 0; first < order.size(); first += lanes) {
+        std::size_t rounds = 0;
+        for (std::size_t l = first; l < std::min(order.size(), first + lanes); ++l)
+            rounds = std::max(rounds, perPixel[order[l]].size());
+        for (std::size_t k = 0; k < rounds; ++k)
+            for (std::size_t l = first; l < first + lanes; ++l)
+                schedule.push_back(l < order.size() && k < perPixel[order[l]].size() ? perPixel[order[l]][k]
+                                                                                      : kIdleLane);
+    }
+    return schedule;
+}
+
 // `rays` as the reference logged them (each pixel's rays together, in order), `steps[i]` what
 // tracing ray i costs (for example node visits + triangle tests + 1). Each fill is the lanes' steps
 // over the steps their groups run: 1 when no lane ever waits.

@@ -16,6 +16,7 @@
 #include "gpu/compute_pipeline.h"
 #include "gpu/gpu_buffer.h"
 #include "gpu/vulkan_device.h"
+#include "ray_schedules.h"
 #include "render/traversal_nodes.h"
 #include "trace_rays.spv.h"
 
@@ -23,7 +24,8 @@ namespace vitrum::bench {
 
 class TraceOnlyKernel {
 public:
-    // `order`: the rays to trace, in the order the kernel's invocations take them.
+    // `order`: the rays to trace, in the order the kernel's invocations take them; an invocation
+    // given bench::kIdleLane traces nothing, as a lane of trace.comp without a ray waits.
     TraceOnlyKernel(const VulkanDevice& device, const TraversalNodes& tree,
                     std::span<const gpu::TriangleVertices> triangles, std::span<const TracedRay> rays,
                     std::span<const std::size_t> order)
@@ -38,6 +40,11 @@ public:
         std::vector<glm::vec4> texels;
         texels.reserve(2 * order.size());
         for (std::size_t i : order) {
+            if (i == kIdleLane) {  // tMin -1: no ray (a traced ray's tMin is never negative)
+                texels.emplace_back(0.0f, 0.0f, 0.0f, -1.0f);
+                texels.emplace_back(0.0f, 0.0f, 1.0f, 1.0f);
+                continue;
+            }
             const TracedRay& r = rays[i];
             texels.emplace_back(r.origin, r.tMin);
             texels.emplace_back(r.direction, r.anyHit ? -r.tMax : r.tMax);

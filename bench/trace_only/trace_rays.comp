@@ -10,7 +10,8 @@
 layout(local_size_x = 64) in;
 
 // The scene as trace.comp reads it (shaders/bindings.glsl), and the rays: two texels a ray,
-// (origin, tMin) and (direction, tMax), tMax negative for a shadow ray (any hit in (tMin, -tMax)).
+// (origin, tMin) and (direction, tMax), tMax negative for a shadow ray (any hit in (tMin, -tMax)),
+// tMin negative for no ray (an idle lane).
 layout(set = 0, binding = 0, rgba32ui) uniform readonly uimageBuffer nodeTexels;
 layout(set = 0, binding = 1, rgba32ui) uniform readonly uimageBuffer vertexTexels;
 layout(set = 0, binding = 2, rgba32ui) uniform readonly uimageBuffer rayTexels;
@@ -53,12 +54,12 @@ uint gMediumStackOverflows = 0u;
 
 void main() {
     uint i = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-    bool tracing = i < control.y;
-    uint ray = tracing ? i : 0u;
+    uint ray = i < control.y ? i : 0u;
     params.bvh = uvec4(control.x, 0u, 0u, 0u);
     params.tuning = vec4(0.0);
     vec4 origin = fetchVec4(rayTexels, 2u * ray, 0u);
     vec4 direction = fetchVec4(rayTexels, 2u * ray, 1u);
+    bool tracing = i < control.y && origin.w >= 0.0;
     bool anyHit = direction.w < 0.0;
     beginTraversal(origin.xyz, direction.xyz, origin.w, abs(direction.w));
     // Every lane of the subgroup calls traverse (its group maxima read every lane); lavapipe's
@@ -66,7 +67,11 @@ void main() {
     // that every traversal is over.
     uint steps = 0u;
     bool over = traverse(anyHit ? kTraverseAny : kTraverseClosest, tracing, steps, 60000u);
-    if (!tracing) return;
+    if (i >= control.y) return;
+    if (!tracing) {
+        hits[i] = vec4(-1.0, 0.0, 1.0, float(steps));
+        return;
+    }
     bool found = st.traversal.z != kNoTriangle;
     hits[i] = vec4(found ? st.traceDirection.w : -1.0, uintBitsToFloat(st.traversal.z), over ? 1.0 : 0.0, float(steps));
 }
