@@ -14,8 +14,9 @@ std::filesystem::path temporaryFor(const std::filesystem::path& path);
 void writeFileAtomically(const std::filesystem::path& path, const std::string& contents);
 
 // Throws InputError naming the file, with the system's reason, when no file can be created at
-// `path` (a name too long, a read-only folder, a folder of that name): the temporary that writeFileAtomically and
-// writeImage would write is created and removed. For outputs, before any long work.
+// `path` (a name too long, a read-only folder, a folder of that name): the temporary that
+// writeFileAtomically and writeImage would write is created and removed. For outputs, before any
+// long work.
 void checkWritable(const std::filesystem::path& path);
 
 }  // namespace vitrum
