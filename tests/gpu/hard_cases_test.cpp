@@ -20,6 +20,7 @@
 #include "cpu/ray_offset.h"
 #include "gpu/test_kernels.h"
 #include "gpu_test_support.h"
+#include "../support/scenes_in_code.h"
 #include "../support/test_meshes.h"
 
 namespace vitrum::testing {
@@ -342,7 +343,7 @@ TEST(HardCaseOptics, RandomCasesKeepSnellReciprocityAndUnitLength) {
     EXPECT_GT(back.size(), 4000u);
 }
 
-// ---- Scenes built in code -------------------------------------------------------------------
+// ---- Scenes built in code (triangles and boxes: support/scenes_in_code.h) -------------------
 
 Material material(MaterialModel model, vec3 diffuse = vec3(0.0f), float ior = 1.5f, vec3 ambient = vec3(0.0f)) {
     Material m;
@@ -353,35 +354,12 @@ Material material(MaterialModel model, vec3 diffuse = vec3(0.0f), float ior = 1.
     return m;
 }
 
-Triangle triangle(vec3 a, vec3 b, vec3 c, std::uint32_t materialIndex, std::uint32_t object) {
-    Triangle t{};
-    t.position[0] = a, t.position[1] = b, t.position[2] = c;
-    const vec3 n = glm::normalize(glm::cross(b - a, c - a));
-    for (vec3& vn : t.normal) vn = n;
-    t.material = materialIndex;
-    t.object = object;
-    return t;
-}
-
-// A closed box, outward wound.
-void addBox(Scene& scene, vec3 lo, vec3 hi, std::uint32_t materialIndex, std::uint32_t object) {
-    const vec3 centre = 0.5f * (lo + hi);
-    vec3 corner[8];
-    for (int i = 0; i < 8; ++i) corner[i] = vec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
-    const int faces[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
-    for (const auto& f : faces)
-        for (int k = 0; k < 2; ++k) {
-            vec3 a = corner[f[0]], b = corner[f[1 + k]], c = corner[f[2 + k]];
-            if (glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0f - centre) < 0.0f) std::swap(b, c);
-            scene.triangles.push_back(triangle(a, b, c, materialIndex, object));
-        }
-}
-
 // Icosahedron subdivided twice (320 triangles), shared vertices bit-identical, outward wound.
 void addIcosphere(Scene& scene, vec3 centre, float radius, std::uint32_t materialIndex, std::uint32_t object) {
     const IndexedMesh mesh = icosphere(2, radius, centre);
     for (const glm::uvec3& tri : mesh.faces) {
-        Triangle tr = triangle(mesh.vertices[tri.x], mesh.vertices[tri.y], mesh.vertices[tri.z], materialIndex, object);
+        Triangle tr =
+            makeTriangle(mesh.vertices[tri.x], mesh.vertices[tri.y], mesh.vertices[tri.z], materialIndex, object);
         for (int k = 0; k < 3; ++k) tr.normal[k] = glm::normalize(mesh.directions[tri[k]]);  // smooth normals
         scene.triangles.push_back(tr);
     }
@@ -534,8 +512,8 @@ TEST(HardCaseSelfIntersection, LitPlaneHasNoShadowAcneAtAnyScale) {
         scene.lights.push_back({.position = {-10.0f, 0.0f, 1.7633f}, .colour = vec3(1.0f)});
         scene.materials.push_back(material(MaterialModel::Lambert, vec3(0.8f), 1.5f, vec3(0.1f)));
         scene.objectNames = {"plane"};
-        scene.triangles.push_back(triangle({-3, -3, 0}, {3, -3, 0}, {3, 3, 0}, 0, 0));
-        scene.triangles.push_back(triangle({-3, -3, 0}, {3, 3, 0}, {-3, 3, 0}, 0, 0));
+        scene.triangles.push_back(makeTriangle({-3, -3, 0}, {3, -3, 0}, {3, 3, 0}, 0, 0));
+        scene.triangles.push_back(makeTriangle({-3, -3, 0}, {3, 3, 0}, {-3, 3, 0}, 0, 0));
         const Scene s = transformed(scene, scale, shift);
         RenderPair p = renderBoth(s);
         int checked = 0;
@@ -623,11 +601,11 @@ TEST(HardCaseWatertight, NoBackgroundShowsThroughSharedEdgesAndVertices) {
             const vec3 a = v[j * n + i], b = v[j * n + i + 1], c = v[(j + 1) * n + i + 1], d = v[(j + 1) * n + i];
             // Alternate the diagonal so that both diagonal directions are crossed.
             if ((i + j) % 2 == 0) {
-                scene.triangles.push_back(triangle(a, b, c, 0, 0));
-                scene.triangles.push_back(triangle(a, c, d, 0, 0));
+                scene.triangles.push_back(makeTriangle(a, b, c, 0, 0));
+                scene.triangles.push_back(makeTriangle(a, c, d, 0, 0));
             } else {
-                scene.triangles.push_back(triangle(a, b, d, 0, 0));
-                scene.triangles.push_back(triangle(b, c, d, 0, 0));
+                scene.triangles.push_back(makeTriangle(a, b, d, 0, 0));
+                scene.triangles.push_back(makeTriangle(b, c, d, 0, 0));
             }
         }
     RenderPair p = renderBoth(scene);
@@ -678,7 +656,7 @@ TEST(HardCaseDegenerate, DegenerateGeometryIsCountedNotFatal) {
     // A floor, and zero-area triangles (a repeated vertex; all three the same) in front of it all.
     addBox(scene, {-4, -3, -1.0f}, {4, 3, -0.6f}, 1, 4);
     for (float x : {-1.7f, -0.4f, 0.9f, 1.9f}) {
-        Triangle t = triangle({x, -1.0f, -0.5f}, {x + 0.3f, -1.0f, 0.3f}, {x, -1.0f, 0.2f}, 0, 5);
+        Triangle t = makeTriangle({x, -1.0f, -0.5f}, {x + 0.3f, -1.0f, 0.3f}, {x, -1.0f, 0.2f}, 0, 5);
         t.position[2] = t.position[0];
         scene.triangles.push_back(t);
         t.position[1] = t.position[0];
@@ -715,7 +693,7 @@ TEST(HardCaseDegenerate, CollinearTriangleHitByRoundingTakesItsShadingNormalOrFa
     std::vector<Triangle> segments;
     for (const auto& [i, j] : {std::pair{1, 2}, {-2, 1}, {3, -1}, {-1, -2}, {2, 3}, {-3, 0}}) {
         const vec3 a(0.0625f * float(i), 1.0f, 0.125f * float(j));
-        segments.push_back(triangle(from + a, from + 1.5f * a, from + 3.25f * a, 0, 0));
+        segments.push_back(makeTriangle(from + a, from + 1.5f * a, from + 3.25f * a, 0, 0));
         const Triangle& t = segments.back();
         ASSERT_EQ(glm::cross(t.position[1] - t.position[0], t.position[2] - t.position[0]), vec3(0.0f));
     }
@@ -777,8 +755,8 @@ TEST(HardCaseDegenerate, VertexNormalsWithNoDirectionShadeWithTheGeometricNormal
     scene.background.colour = vec3(1, 0, 0);
     scene.materials.push_back(material(MaterialModel::Normal));
     scene.objectNames = {"wall"};
-    scene.triangles.push_back(triangle({-3, 0, -3}, {3, 0, -3}, {3, 0, 3}, 0, 0));  // normal -y
-    scene.triangles.push_back(triangle({-3, 0, -3}, {3, 0, 3}, {-3, 0, 3}, 0, 0));
+    scene.triangles.push_back(makeTriangle({-3, 0, -3}, {3, 0, -3}, {3, 0, 3}, 0, 0));  // normal -y
+    scene.triangles.push_back(makeTriangle({-3, 0, -3}, {3, 0, 3}, {-3, 0, 3}, 0, 0));
     ASSERT_EQ(scene.triangles[0].normal[0], vec3(0, -1, 0));
     const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
     for (const vec3 bad : {vec3(0.0f), vec3(0.0f, -inf, 0.0f), vec3(nan)}) {
@@ -863,12 +841,12 @@ TEST(HardCaseDeepTree, RayThroughTheDeepestNestOfBoxesNeverOverflowsTheTraversal
         for (int j = 0; j < 3; ++j) {
             const vec3 c(std::ldexp(1.0f, -2 * k) * (1.0f + 0.01f * float(j)), 0.0f, 0.0f);
             const float size = std::ldexp(1.0f, -2 * k - 8);
-            scene.triangles.push_back(triangle(c, c + vec3(size, 0, 0), c + vec3(0, size, size), 0, 0));
+            scene.triangles.push_back(makeTriangle(c, c + vec3(size, 0, 0), c + vec3(0, size, size), 0, 0));
         }
     for (int half = 0; half < 2; ++half) {  // y < 0 and y > 0 at x = 10
         const float y0 = half == 0 ? -1.0f : 0.0f, y1 = half == 0 ? 0.0f : 1.0f;
-        scene.triangles.push_back(triangle({10, y0, -1}, {10, y1, -1}, {10, y1, 1}, std::uint32_t(half), 1));
-        scene.triangles.push_back(triangle({10, y0, -1}, {10, y1, 1}, {10, y0, 1}, std::uint32_t(half), 1));
+        scene.triangles.push_back(makeTriangle({10, y0, -1}, {10, y1, -1}, {10, y1, 1}, std::uint32_t(half), 1));
+        scene.triangles.push_back(makeTriangle({10, y0, -1}, {10, y1, 1}, {10, y0, 1}, std::uint32_t(half), 1));
     }
     const Bvh bvh = buildBvh(scene.triangles);
     EXPECT_GT(bvh.stats.maxDepth, 28u);  // the case is as deep as intended
