@@ -25,8 +25,7 @@ layout(std430, set = 0, binding = 11) buffer Stats { uint stats[]; };
 layout(std430, set = 0, binding = 12) buffer PendingRays { PendingRay pendingRays[]; };  // kPendingRayCapacity a pixel
 layout(std430, set = 0, binding = 13) buffer TraversalStacks { uint traversalStacks[]; };  // kTraversalStackSize a pixel
 
-// Texel k of the struct at `first` (a macro: GLSL functions cannot take the images' format).
-#define fetchVec4(texels, first, k) uintBitsToFloat(imageLoad(texels, int((first) + (k))))
+#include "geometry_texels.glsl"  // fetchVec4, loadTraversalNode, loadTriangle
 
 // The render parameters, read once at the start of main(). Not a uniform buffer: lavapipe
 // recompiles a kernel for the values of uniforms that decide branches ("inlining") at every
@@ -50,18 +49,6 @@ RenderParams loadRenderParams() {
     p.bvh = imageLoad(paramTexels, 12);
     p.cameraMedia = imageLoad(paramTexels, 13);
     return p;
-}
-
-TraversalNode loadTraversalNode(uint i) {
-    uint first = kTraversalNodeTexels * i;
-    return TraversalNode(fetchVec4(nodeTexels, first, 0u), fetchVec4(nodeTexels, first, 1u),
-                         fetchVec4(nodeTexels, first, 2u), fetchVec4(nodeTexels, first, 3u));
-}
-
-TriangleVertices loadTriangle(uint i) {
-    uint first = kTriangleVerticesTexels * i;
-    return TriangleVertices(fetchVec4(vertexTexels, first, 0u), fetchVec4(vertexTexels, first, 1u),
-                            fetchVec4(vertexTexels, first, 2u));
 }
 
 // A triangle's vertex normals (TriangleShading's first three texels).

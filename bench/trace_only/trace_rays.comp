@@ -21,19 +21,7 @@ layout(std430, set = 0, binding = 3) readonly buffer Control { uvec4 control; };
 // traversal is over; .w = the group's steps.
 layout(std430, set = 0, binding = 4) writeonly buffer Hits { vec4 hits[]; };
 
-#define fetchVec4(texels, first, k) uintBitsToFloat(imageLoad(texels, int((first) + (k))))
-
-TraversalNode loadTraversalNode(uint i) {
-    uint first = kTraversalNodeTexels * i;
-    return TraversalNode(fetchVec4(nodeTexels, first, 0u), fetchVec4(nodeTexels, first, 1u),
-                         fetchVec4(nodeTexels, first, 2u), fetchVec4(nodeTexels, first, 3u));
-}
-
-TriangleVertices loadTriangle(uint i) {
-    uint first = kTriangleVerticesTexels * i;
-    return TriangleVertices(fetchVec4(vertexTexels, first, 0u), fetchVec4(vertexTexels, first, 1u),
-                            fetchVec4(vertexTexels, first, 2u));
-}
+#include "geometry_texels.glsl"  // fetchVec4, loadTraversalNode, loadTriangle, as trace.comp reads them
 
 // What bvh.glsl reads of trace.comp: the features (a shadow ray ends at its first hit; no
 // touching probe; full subgroups, which the bench asks for when it creates the pipeline; a
