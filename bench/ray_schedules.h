@@ -124,40 +124,21 @@ inline std::vector<std::size_t> kernelSchedule(std::span<const TracedRay> rays, 
 // over the steps their groups run: 1 when no lane ever waits.
 inline ScheduleFill scheduleFill(std::span<const TracedRay> rays, std::span<const double> steps, std::uint32_t width,
                                  std::uint32_t height, std::uint32_t lanes) {
-    const std::uint32_t pixels = width * height;
-    std::vector<std::vector<std::size_t>> perPixel(pixels);
     double total = 0;
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-        perPixel[rays[i].pixel].push_back(i);
-        total += steps[i];
-    }
-    const std::vector<std::uint32_t> order = detail::kernelPixelOrder(width, height);
-
-    // A lane a pixel: round k of a group costs the longest k-th ray of its lanes.
-    double kernelCost = 0;
-    for (std::size_t first = 0; first < order.size(); first += lanes) {
-        const std::size_t last = std::min(order.size(), first + lanes);
-        std::size_t rounds = 0;
-        for (std::size_t l = first; l < last; ++l) rounds = std::max(rounds, perPixel[order[l]].size());
-        for (std::size_t k = 0; k < rounds; ++k) {
-            double longest = 0;
-            for (std::size_t l = first; l < last; ++l)
-                if (k < perPixel[order[l]].size()) longest = std::max(longest, steps[perPixel[order[l]][k]]);
-            kernelCost += longest;
-        }
-    }
-
-    // Passes of the k-th rays, packed into groups.
-    auto packedCost = [&](const std::vector<std::size_t>& pass) {
+    for (double s : steps) total += s;
+    // Rays packed into groups of `lanes`: each group costs its longest ray (idle lanes cost nothing).
+    auto packedCost = [&](const std::vector<std::size_t>& order) {
         double cost = 0;
-        for (std::size_t first = 0; first < pass.size(); first += lanes) {
+        for (std::size_t first = 0; first < order.size(); first += lanes) {
             double longest = 0;
-            for (std::size_t i = first; i < std::min(pass.size(), first + lanes); ++i)
-                longest = std::max(longest, steps[pass[i]]);
+            for (std::size_t i = first; i < std::min(order.size(), first + lanes); ++i)
+                if (order[i] != kIdleLane) longest = std::max(longest, steps[order[i]]);
             cost += longest;
         }
         return cost;
     };
+    // A lane a pixel: round k of a group costs the longest k-th ray of its lanes.
+    const double kernelCost = packedCost(kernelSchedule(rays, width, height, lanes));
     double compactedCost = 0, sortedCost = 0;
     for (const std::vector<std::size_t>& pass : rayPasses(rays, width, height, false)) compactedCost += packedCost(pass);
     for (const std::vector<std::size_t>& pass : rayPasses(rays, width, height, true)) sortedCost += packedCost(pass);
