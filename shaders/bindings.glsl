@@ -19,7 +19,7 @@ layout(set = 0, binding = 5, rgba32ui) uniform readonly uimageBuffer lightTexels
 layout(std430, set = 0, binding = 6) readonly buffer Textures { TextureInfo textures[]; };
 layout(std430, set = 0, binding = 7) readonly buffer Texels { float texels[]; };  // RGB, packed
 layout(set = 0, binding = 8, rgba32ui) uniform readonly uimageBuffer objectMediumTexels;
-layout(std430, set = 0, binding = 9) writeonly buffer Pixels { vec4 pixels[]; };
+layout(std430, set = 0, binding = 9) writeonly buffer Pixels { vec4 pixels[]; };  // one tile's, by slot
 layout(std430, set = 0, binding = 10) buffer States { uvec4 stateTexels[]; };  // TraceStates, see suspend.glsl
 layout(std430, set = 0, binding = 11) buffer Stats { uint stats[]; };
 layout(std430, set = 0, binding = 12) buffer PendingRays { PendingRay pendingRays[]; };  // kPendingRayCapacity a pixel

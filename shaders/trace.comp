@@ -683,7 +683,7 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
     st.traversal.w += gPixelSteps;
     bool done = st.control.x == kPhaseDone && !givenUpGroup;
     if (hasPixel) {
-        if (done) pixels[pixel.y * params.image.x + pixel.x] = vec4(colourOfSum(st.colourLow, st.colourHigh) / float(params.image.z), 1.0);
+        if (done) pixels[slot] = vec4(colourOfSum(st.colourLow, st.colourHigh) / float(params.image.z), 1.0);
         if (kResumable) suspendState(slot, !done);
         else markSlot(slot, done);
     }

@@ -205,6 +205,7 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         const char* what;
         VkDeviceSize bytes;
         BufferKind kind;
+        bool perTile = false;  // sized by --tile, not by the scene or the image
     } buffers[] = {
         {"BVH nodes", triangles * sizeof(gpu::TraversalNode), kTexel},  // at most triangles - 1 interior nodes
         {"triangle vertices", triangles * sizeof(gpu::TriangleVertices), kTexel},
@@ -212,15 +213,18 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         {"materials", scene.materials.size() * sizeof(gpu::GpuMaterial), kTexel},
         {"lights", scene.lights.size() * sizeof(gpu::GpuLight), kTexel},
         {"texture texels", texels * 3 * sizeof(float), kStorage},
-        {"image", VkDeviceSize(scene.camera.width) * scene.camera.height * sizeof(glm::vec4), kStorage},
-        {"trace state of one tile", tilePixels * sizeof(gpu::TraceState), kStorage},
-        {"pending rays of one tile", tilePixels * gpu::kRayStackSize * sizeof(gpu::PendingRay), kStorage},
-        {"traversal stacks of one tile", tilePixels * gpu::kTraversalStackSize * sizeof(std::uint32_t), kStorage},
+        {"pixels of one tile", tilePixels * sizeof(glm::vec4), kStorage, true},
+        {"trace state of one tile", tilePixels * sizeof(gpu::TraceState), kStorage, true},
+        {"pending rays of one tile", tilePixels * gpu::kRayStackSize * sizeof(gpu::PendingRay), kStorage, true},
+        {"traversal stacks of one tile", tilePixels * gpu::kTraversalStackSize * sizeof(std::uint32_t), kStorage, true},
     };
     VkDeviceSize total = 0;
     for (const auto& buffer : buffers) {
-        if (buffer.bytes > bufferLimit(device, buffer.kind).bytes)
-            throw bufferTooLarge(device, buffer.what, buffer.bytes, buffer.kind);
+        if (buffer.bytes > bufferLimit(device, buffer.kind).bytes) {
+            const InputError error = bufferTooLarge(device, buffer.what, buffer.bytes, buffer.kind);
+            if (buffer.perTile) throw InputError(std::string(error.what()) + "; a smaller --tile needs less");
+            throw error;
+        }
         total += buffer.bytes;
     }
     VkPhysicalDeviceMemoryProperties memory{};

@@ -98,9 +98,11 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     GpuBuffer texels = makeStorageBuffer(device, spanOf(packed.texels), "texture texels");
     const std::vector<glm::vec4> mediumTexels = objectMediumTexels(packed);
     GpuBuffer objectMedia = makeTexelBuffer(device, spanOf(mediumTexels), "object media");
-    GpuBuffer pixels(device, std::max<VkDeviceSize>(VkDeviceSize(width) * height * sizeof(glm::vec4), 16),
-                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "image");
+    // Like the state buffers, the pixels are one tile's (a slot a pixel), copied into the image
+    // as each tile is done: so the image's size is not bound by the device's buffer limits.
     const VkDeviceSize tilePixels = VkDeviceSize(tileWidth) * tileHeight;
+    GpuBuffer pixels(device, tilePixels * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                     "pixels of one tile");
     GpuBuffer states(device, tilePixels * sizeof(gpu::TraceState), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                      "trace state of one tile");
     GpuBuffer pendingRays(device, std::max<VkDeviceSize>(tilePixels * kernel.pendingRayCapacity * sizeof(gpu::PendingRay), 16),
@@ -204,6 +206,19 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
             counterValues[gpu::kWorkCursor] = cursor;
         }
     };
+    Image image(width, height);
+    double readbackSeconds = 0;
+    // The tile's pixels inside the image, from their slots (trace.comp's traceUnit) to the image.
+    auto readTile = [&](glm::uvec4 tile) {
+        const auto readStart = Clock::now();
+        const auto* values = pixels.as<glm::vec4>();
+        const std::uint32_t columns = std::min(tile.z, width - tile.x);
+        const std::uint32_t rows = std::min(tile.w, height - tile.y);
+        for (std::uint32_t y = 0; y < rows; ++y)
+            for (std::uint32_t x = 0; x < columns; ++x)
+                image.at(tile.x + x, tile.y + y) = glm::vec3(values[y * tile.z + x]);
+        readbackSeconds += secondsSince(readStart);
+    };
     start = Clock::now();
     for (std::uint32_t ty = 0; ty < tilesY; ++ty) {
         for (std::uint32_t tx = 0; tx < tilesX; ++tx) {
@@ -222,17 +237,13 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
                 p.tile = tile;
             }
             for (std::uint32_t unfinished = givenUp; unfinished > 0;) unfinished = dispatch(*resumable);
+            readTile(tile);
             if (options.progress) options.progress(double(ty * tilesX + tx + 1) / double(tilesX * tilesY));
         }
     }
-    stats.addPhase("render", secondsSince(start) - resumableSeconds);
+    stats.addPhase("render", secondsSince(start) - resumableSeconds - readbackSeconds);
     if (resumable) stats.addPhase("resumable kernel", resumableSeconds);  // its pipeline and compile
-
-    start = Clock::now();
-    Image image(width, height);
-    const auto* values = pixels.as<glm::vec4>();
-    for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = glm::vec3(values[i]);
-    stats.addPhase("readback", secondsSince(start));
+    stats.addPhase("readback", readbackSeconds);
     return image;
 }
 

@@ -48,6 +48,27 @@ TEST_F(Cli, GeosphereRendersTheSameOnBothBackends) {
     EXPECT_TRUE(fs::exists(path("heat.png")));
 }
 
+// The GPU's buffers hold one tile at a time, the pixels included: an image whose 16-byte pixels
+// would not fit one storage buffer of the device renders tile by tile, each tile's pixels put in
+// their place. Here the limit is lowered (VITRUM_MAX_BUFFER_BYTES) below the 480,000 bytes that
+// 200 x 150 pixels need, and tiles of 16 pixels fit it; the image is the same, bit for bit, as one
+// rendered in one tile without the limit.
+TEST_F(Cli, ImageLargerThanTheDeviceBufferLimitRendersTileByTile) {
+    const std::string common = "render " + kGeosphere + " --width 200 --height 150 --backend vulkan";
+    CommandRun tiled = vitrum(common + " --tile 16 -o " + path("tiled.pfm"), "VITRUM_MAX_BUFFER_BYTES=300000");
+    ASSERT_EQ(tiled.exitCode, 0) << tiled.output;
+    CommandRun whole = vitrum(common + " -o " + path("whole.pfm"));
+    ASSERT_EQ(whole.exitCode, 0) << whole.output;
+    const vitrum::Image a = vitrum::readImage(path("tiled.pfm"));
+    const vitrum::Image b = vitrum::readImage(path("whole.pfm"));
+    ASSERT_EQ(a.width, 200u);
+    ASSERT_EQ(a.height, 150u);
+    // Not a uniform image, so a tile out of place would show: the geosphere in the middle, the
+    // background in the corner.
+    ASSERT_NE(b.at(100, 75), b.at(0, 0));
+    EXPECT_EQ(a.pixels, b.pixels);
+}
+
 // OpenEXR output holds the render's linear floats, as PFM does: the two files read back the same,
 // and `vitrum diff` reads both.
 TEST_F(Cli, ExrOutputHoldsTheSameValuesAsPfm) {
