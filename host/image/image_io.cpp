@@ -23,6 +23,7 @@
 #include "image/declared_size.h"
 #include "image/image.h"
 #include "image/openexr_file.h"
+#include "image/png_chunks.h"
 #include "image/pnm_file.h"
 #include "image/srgb.h"
 
@@ -40,9 +41,22 @@ std::string lowerExtension(const fs::path& path) {
 // A value fit for a file: non-finite becomes 0.
 float finiteOrZero(float v) { return std::isfinite(v) ? v : 0.0f; }
 
+// stb's reason for a failure, printable: it names an unknown PNG chunk by its four bytes,
+// whatever they are ("\xD5\xF6;\x0B PNG chunk not known"), and those are shown escaped.
 std::string stbReason() {
     const char* reason = stbi_failure_reason();
-    return reason ? reason : "unknown error";
+    if (!reason) return "unknown error";
+    std::string shown;
+    for (const char* c = reason; *c; ++c) {
+        const auto byte = static_cast<unsigned char>(*c);
+        if (byte >= 0x20 && byte < 0x7f) {
+            shown += char(byte);
+        } else {
+            static constexpr char kHex[] = "0123456789ABCDEF";
+            shown += {'\\', 'x', kHex[byte >> 4], kHex[byte & 15]};
+        }
+    }
+    return shown;
 }
 
 // ---- PFM ----------------------------------------------------------------------------------------
@@ -316,7 +330,8 @@ Image readImage(const fs::path& path) {
     if (ext == ".exr") return readOpenExr(path);
     // Decide by content between linear Radiance HDR and sRGB 8/16-bit images, so a misnamed
     // .hdr is never gamma-converted by stb (and a .hdr that is not one is reported).
-    const FileBytes file = readFileBytes(path);
+    FileBytes file = readFileBytes(path);
+    removeEmptyImageDataChunks(file.bytes);
     const bool isHdr = stbi_is_hdr_from_memory(file.data(), file.size()) != 0;
     if (ext == ".hdr" && !isHdr) throw inputError(path, 0, "cannot read image: not a Radiance HDR file");
     if (isBinaryPnm(file.bytes)) return readPnm(path, file.bytes);

@@ -18,6 +18,7 @@
 #include "common/error.h"
 #include "image/image.h"
 #include "image/image_diff.h"
+#include "image/png_chunks.h"
 #include "image/srgb.h"
 
 #include "../support/temporary_folder_test.h"
@@ -270,6 +271,74 @@ TEST_F(ImageIoTest, AHeaderPastTheFirst128BytesIsNoImage) {
     const std::string message = exceptionMessage([&] { readImage(path); });
     EXPECT_NE(message.find(path.string()), std::string::npos) << message;
     EXPECT_NE(message.find("cannot read image"), std::string::npos) << message;
+}
+
+// A PNG chunk of `type` with `data`; the CRC is left 0 (stb does not check it).
+std::string pngChunk(const std::string& type, const std::string& data = "") {
+    const auto length = std::uint32_t(data.size());
+    std::string chunk{char(length >> 24), char(length >> 16), char(length >> 8), char(length)};
+    return chunk + type + data + std::string(4, '\0');
+}
+
+// Where the first IDAT chunk starts in a PNG, its length field included.
+std::size_t firstImageData(const std::string& png) {
+    const std::size_t type = png.find("IDAT");
+    return type == std::string::npos ? type : type - 4;
+}
+
+std::string readBytesOf(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Empty IDAT chunks hold no image data, but stb 2.27 copies the zero bytes of a first one into a
+// buffer it has not allocated (memcpy(NULL, ..., 0): undefined behaviour, which clang's UBSan in
+// the fuzz build reports and gcc's does not; found by fuzzing, the input kept in
+// tests/fuzz/regressions/image/): they are taken out before stb decodes the file, and only they.
+TEST_F(ImageIoTest, EmptyPngImageDataChunksAreTakenOutBeforeDecoding) {
+    const fs::path original = dir_ / "gradient.png";
+    writeImage(gradient(64, 8), original);
+    const std::string bytes = readBytesOf(original);
+    const std::size_t idat = firstImageData(bytes);
+    ASSERT_NE(idat, std::string::npos);
+    const std::uint32_t idatLength = std::uint32_t(std::uint8_t(bytes[idat])) << 24 |
+                                     std::uint32_t(std::uint8_t(bytes[idat + 1])) << 16 |
+                                     std::uint32_t(std::uint8_t(bytes[idat + 2])) << 8 | std::uint8_t(bytes[idat + 3]);
+    const std::size_t afterIdat = idat + 12 + idatLength;
+    // An empty IDAT before the first one and one after it.
+    const std::string withEmpty = bytes.substr(0, idat) + pngChunk("IDAT") + bytes.substr(idat, afterIdat - idat) +
+                                  pngChunk("IDAT") + bytes.substr(afterIdat);
+
+    std::vector<unsigned char> png(withEmpty.begin(), withEmpty.end());
+    EXPECT_EQ(removeEmptyImageDataChunks(png), 2u);
+    EXPECT_EQ(std::string(png.begin(), png.end()), bytes);
+
+    const fs::path mended = dir_ / "empty_idat.png";
+    writeBytes(mended, withEmpty);
+    EXPECT_EQ(readImage(mended).pixels, readImage(original).pixels);
+
+    // After a chunk that runs past the end of the file nothing is taken out; nor from a non-PNG.
+    const std::string cut = bytes.substr(0, idat) + bytes.substr(idat, 20) + pngChunk("IDAT");
+    png.assign(cut.begin(), cut.end());
+    EXPECT_EQ(removeEmptyImageDataChunks(png), 0u);
+    EXPECT_EQ(std::string(png.begin(), png.end()), cut);
+    std::vector<unsigned char> notPng(withEmpty.begin() + 1, withEmpty.end());
+    EXPECT_EQ(removeEmptyImageDataChunks(notPng), 0u);
+}
+
+// stb names an unknown critical chunk by its four bytes, whatever they are: the message shows
+// them escaped, never raw bytes on the user's terminal.
+TEST_F(ImageIoTest, AnUnknownPngChunkIsNamedInPrintableCharacters) {
+    const fs::path original = dir_ / "gradient.png";
+    writeImage(gradient(8, 8), original);
+    const std::string bytes = readBytesOf(original);
+    const std::size_t idat = firstImageData(bytes);
+    ASSERT_NE(idat, std::string::npos);
+    const fs::path path = dir_ / "unknown_chunk.png";
+    writeBytes(path, bytes.substr(0, idat) + pngChunk("\xD5\xF6;\x0B") + bytes.substr(idat));
+    const std::string message = exceptionMessage([&] { readImage(path); });
+    EXPECT_NE(message.find(R"(\xD5\xF6;\x0B PNG chunk not known)"), std::string::npos) << message;
+    EXPECT_TRUE(std::all_of(message.begin(), message.end(), [](char c) { return c >= 0x20 && c < 0x7f; })) << message;
 }
 
 TEST_F(ImageIoTest, MissingFileNamesThePath) {
