@@ -48,6 +48,8 @@ RenderParams loadRenderParams() {
     p.offsets = fetchVec4(paramTexels, 0u, 11u);
     p.bvh = imageLoad(paramTexels, 12);
     p.cameraMedia = imageLoad(paramTexels, 13);
+    p.cameraSurface = fetchVec4(paramTexels, 0u, 14u);
+    p.cameraMediaBehind = imageLoad(paramTexels, 15);
     return p;
 }
 

@@ -214,10 +214,16 @@ void startPrimaryRay() {
     uint pixelIndex = pixel.y * params.image.x + pixel.x;
     uint k = st.colourLow.w;
     vec2 position = vec2(pixel) + sampleOffsetInPixel(pixelIndex, k, params.image.z, params.pass.y);
-    st.ray.origin = vec4(params.cameraFrom.xyz, uintBitsToFloat(0u));
-    st.ray.direction = vec4(cameraRayDirection(position), uintBitsToFloat(usesMaterial(kMaterialGlass) ? params.pass.x : 0u));
+    vec3 d = cameraRayDirection(position);
+    // Off the surface the camera lies on (a normal of 0 where none), on the ray's side, with that
+    // side's media (host/render/camera_surface.h: primaryRayOrigin).
+    vec3 n = params.cameraSurface.xyz;
+    bool behind = dot(d, n) < 0.0;
+    st.ray.origin = vec4(offsetRayOrigin(params.cameraFrom.xyz, behind ? -n : n), uintBitsToFloat(0u));
+    uint media = behind ? params.pass.z : params.pass.x;
+    st.ray.direction = vec4(d, uintBitsToFloat(usesMaterial(kMaterialGlass) ? media : 0u));
     st.ray.weight = vec4(1.0);
-    st.ray.media = params.cameraMedia;  // the media around the camera, innermost last
+    st.ray.media = behind ? params.cameraMediaBehind : params.cameraMedia;  // innermost last
     st.control.y = 0u;
     if (params.image.w == 0u) {
         // max_depth 0: not even the primary ray is traced (render model); the sample is black.

@@ -73,11 +73,25 @@ int infoCommand(int argc, char** argv, int first) {
     const Camera& c = scene.camera;
     std::printf("camera: from (%g, %g, %g) at (%g, %g, %g) up (%g, %g, %g), fov_y %g deg, %ux%u\n", c.from.x,
                 c.from.y, c.from.z, c.at.x, c.at.y, c.at.z, c.up.x, c.up.y, c.up.z, c.fovY, c.width, c.height);
-    // The media every primary ray starts inside (render/camera_medium.h).
-    std::string media;
-    for (std::uint32_t object : features.cameraMedia)
-        media += (media.empty() ? "inside " : ", then ") + scene.objectNames[object];
-    std::printf("camera medium: %s\n", media.empty() ? "air" : media.c_str());
+    // The media every primary ray starts inside (render/camera_medium.h), on each side of the
+    // surface the camera lies on, if any (render/camera_surface.h).
+    auto mediaText = [&](const std::vector<std::uint32_t>& objects) {
+        std::string media;
+        for (std::uint32_t object : objects) media += (media.empty() ? "inside " : ", then ") + scene.objectNames[object];
+        return media.empty() ? std::string("air") : media;
+    };
+    const CameraSurface& surface = features.cameraSurface;
+    if (surface.triangles == 0) {
+        std::printf("camera medium: %s\n", mediaText(features.cameraMedia).c_str());
+    } else {
+        std::printf("camera surface: the camera lies on %u triangle%s%s, normal (%g, %g, %g); primary rays start off "
+                    "it on their side\n",
+                    surface.triangles, surface.triangles == 1 ? "" : "s",
+                    surface.otherPlanes ? " meeting at an angle" : " of one plane", surface.normal.x, surface.normal.y,
+                    surface.normal.z);
+        std::printf("camera medium: %s on the normal's side, %s behind it\n", mediaText(features.cameraMedia).c_str(),
+                    mediaText(features.cameraMediaBehind).c_str());
+    }
     std::printf("background: (%g, %g, %g), air IOR %g\n", scene.background.colour.x, scene.background.colour.y,
                 scene.background.colour.z, scene.airIor);
     std::printf("render: %u spp, max depth %u, fresnel %s, min weight %g\n", scene.settings.samplesPerPixel,

@@ -96,6 +96,8 @@ public:
           vertices_(packTriangleVertices(bvh, scene.triangles)),
           mediumMaterials_(objectMediumMaterials(scene)),
           cameraMedia_(features.cameraMedia),
+          cameraMediaBehind_(features.cameraMediaBehind),
+          cameraSurface_(Vec3(features.cameraSurface.normal)),
           maxDepth_(scene.settings.maxDepth),
           touchTolerance_(Real(features.touchingDistance)),
           touchingPossible_(features.touchingMediaPossible),
@@ -126,7 +128,10 @@ public:
                 continue;
             }
             counters.rays.primary += 1;
-            sum += trace(cameraFrom_, d, 0, cameraMedia_, Color(1), counters);
+            // Off the surface the camera lies on, if any, on the ray's side (render/camera_surface.h).
+            const bool behind = glm::dot(d, cameraSurface_) < Real(0);
+            sum += trace(primaryRayOrigin(cameraFrom_, cameraSurface_, d, offsetScale_), d, 0,
+                         behind ? cameraMediaBehind_ : cameraMedia_, Color(1), counters);
         }
         return sum / Real(n);
     }
@@ -413,6 +418,8 @@ private:
     std::vector<gpu::TriangleVertices> vertices_;
     std::vector<std::uint32_t> mediumMaterials_;
     MediumStack cameraMedia_;  // every primary ray starts inside them (SceneFeatures::cameraMedia)
+    MediumStack cameraMediaBehind_;  // or these, where it goes against cameraSurface_
+    Vec3 cameraSurface_;  // the normal of the surface the camera lies on, 0 if none
     std::uint32_t maxDepth_;
     Real touchTolerance_;    // surfaces closer than this along a ray touch
     bool touchingPossible_;  // glass surfaces of two objects close enough to touch (scene_features.h)

@@ -11,7 +11,7 @@ static_assert(sizeof(TriangleShading) == 80);
 static_assert(sizeof(GpuMaterial) == 64);
 static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(GpuLight) == 32);
-static_assert(sizeof(RenderParams) == 224);
+static_assert(sizeof(RenderParams) == 256);
 static_assert(sizeof(TraversalNode) == 16 * kTraversalNodeTexels);
 static_assert(sizeof(RenderParams) == 16 * kRenderParamsTexels, "bindings.glsl's loadRenderParams reads every field");
 static_assert(sizeof(TriangleVertices) == 16 * kTriangleVerticesTexels);

@@ -141,10 +141,15 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     // scene has two glass objects; the specialized one has the analysis's answer compiled in
     // (boxes that overlap), so it skips probes that could find nothing.
     p.tuning.z = stats.features.glassObjects >= 2 ? 1.0f : 0.0f;
-    // Every primary ray's medium stack: the media around the camera.
+    // Every primary ray's medium stack: the media around the camera, or where the camera lies on a
+    // surface, those on the ray's side of it (render/camera_surface.h).
     const std::vector<std::uint32_t>& cameraMedia = stats.features.cameraMedia;
     p.pass.x = std::uint32_t(cameraMedia.size());
     for (std::size_t i = 0; i < cameraMedia.size(); ++i) p.cameraMedia[int(i)] = cameraMedia[i];
+    const std::vector<std::uint32_t>& behind = stats.features.cameraMediaBehind;
+    p.pass.z = std::uint32_t(behind.size());
+    for (std::size_t i = 0; i < behind.size(); ++i) p.cameraMediaBehind[int(i)] = behind[i];
+    p.cameraSurface = glm::vec4(stats.features.cameraSurface.normal, 0.0f);
     const std::uint32_t tilesX = (width + tileWidth - 1) / tileWidth;
     const std::uint32_t tilesY = (height + tileHeight - 1) / tileHeight;
     auto* counterValues = counters.as<std::uint32_t>();

@@ -31,19 +31,19 @@ double windingNumber(const std::vector<const Triangle*>& triangles, const glm::d
     return solidAngle / (4.0 * std::numbers::pi);
 }
 
-std::vector<std::uint32_t> cameraMedia(const Scene& scene, const std::set<std::uint32_t>& open) {
+std::vector<std::uint32_t> cameraMedia(const Scene& scene, const std::set<std::uint32_t>& open,
+                                       const glm::dvec3& point) {
     std::map<std::uint32_t, std::vector<const Triangle*>> glassTriangles;
     for (const Triangle& t : scene.triangles)
         if (scene.materials[t.material].model == MaterialModel::Glass && !open.count(t.object))
             glassTriangles[t.object].push_back(&t);
-    const glm::dvec3 camera(scene.camera.from);
     struct Around {
         double volume;
         std::uint32_t object;
     };
     std::vector<Around> around;
     for (const auto& [object, triangles] : glassTriangles) {
-        if (windingNumber(triangles, camera) <= 0.5) continue;
+        if (windingNumber(triangles, point) <= 0.5) continue;
         DoubleBox box;
         for (const Triangle* t : triangles)
             for (const glm::vec3& p : t->position) box.grow(glm::dvec3(p));

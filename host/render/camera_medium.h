@@ -4,7 +4,8 @@
 // A glass object holds the camera when its glass triangles make a closed, consistently wound mesh
 // (scene_features.h) whose winding number at the camera's position is above 1/2: +1 inside a
 // mesh wound counterclockwise seen from outside, as the renderers' "entering" test assumes, 0
-// outside. A camera on a surface (1/2) is outside it; an open object holds no medium. The media
+// outside; an open object holds no medium. Where the camera lies on a surface, the media are
+// those of the points off it where primary rays start (camera_surface.h), one side each. The media
 // are ordered as a ray's stack is, innermost last: by the volume of their boxes, the largest
 // first (of two nested closed meshes the inner one has the smaller box). The GPU's stack holds
 // gpu::kMaxMediumDepth media, so only that many innermost ones are kept, with a warning; both
@@ -21,9 +22,11 @@
 
 namespace vitrum {
 
-// Object indices (Triangle::object), innermost last; empty: the camera is in air. `open` are the
-// glass objects that are not closed meshes (openGlassObjects in scene_features.h).
-std::vector<std::uint32_t> cameraMedia(const Scene& scene, const std::set<std::uint32_t>& open);
+// The media around `point` (the camera, or where primary rays start off the surface it lies on,
+// camera_surface.h): object indices (Triangle::object), innermost last; empty: air. `open` are
+// the glass objects that are not closed meshes (openGlassObjects in scene_features.h).
+std::vector<std::uint32_t> cameraMedia(const Scene& scene, const std::set<std::uint32_t>& open,
+                                       const glm::dvec3& point);
 
 // The winding number of the triangles at `point` (the sum of their signed solid angles over 4 pi).
 double windingNumber(const std::vector<const Triangle*>& triangles, const glm::dvec3& point);

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/error.h"
 #include "render/camera_medium.h"
 #include "render/double_box.h"
 #include "render/glass_proximity.h"
@@ -130,7 +131,19 @@ SceneFeatures analyseScene(const Scene& scene) {
     f.touchingMediaPossible = mostOverlaps > 0 && findCloseGlassTriangles(scene, margin).found;
     const std::set<std::uint32_t> open = openGlassObjects(scene);
     f.openGlassObjects = std::uint32_t(open.size());
-    f.cameraMedia = cameraMedia(scene, open);
+    f.cameraSurface = cameraSurface(scene);
+    // A primary ray's media are those where it starts: off the camera's surface on its side.
+    const RayOffsetScale offsets = rayOffsetScale(scene.triangles);
+    const glm::vec3 from = scene.camera.from;
+    const glm::vec3 normal = f.cameraSurface.normal;
+    f.cameraMedia = cameraMedia(scene, open, glm::dvec3(offsetRayOrigin(from, normal, offsets)));
+    f.cameraMediaBehind = f.cameraSurface.triangles == 0
+                              ? f.cameraMedia
+                              : cameraMedia(scene, open, glm::dvec3(offsetRayOrigin(from, -normal, offsets)));
+    if (f.cameraSurface.otherPlanes)
+        warn(
+            "the camera lies where surfaces meet at an angle (an edge or a corner): primary rays start off one "
+            "of their planes, and may meet the others at distances that rounding decides; move the camera off them");
     f.mediumStackDepth = !f.glass ? 0
                          : f.openGlassObjects > 0 ? gpu::kMaxMediumDepth
                                                   : std::min<std::uint32_t>(gpu::kMaxMediumDepth, 1 + mostOverlaps);
@@ -180,6 +193,7 @@ nlohmann::json toJson(const SceneFeatures& f) {
         {"touching_media_possible", f.touchingMediaPossible},
         {"medium_stack_depth", f.mediumStackDepth},
         {"camera_media", f.cameraMedia},
+        {"camera_surface_triangles", f.cameraSurface.triangles},
         {"reflection", f.reflection},
         {"ray_stack_depth", f.rayStackDepth},
         {"shadow_rays", f.shadowRays},

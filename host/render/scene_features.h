@@ -11,6 +11,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "render/camera_surface.h"
 #include "scene/scene.h"
 
 namespace vitrum {
@@ -44,9 +45,14 @@ struct SceneFeatures {
     // whose boxes overlap one glass object's box (an upper bound on how deep they nest), capped
     // at the GPU's stack.
     std::uint32_t mediumStackDepth = 0;
+    // The surface the camera lies on, if any (camera_surface.h): primary rays start off it, on
+    // the side each goes to.
+    CameraSurface cameraSurface;
     // The glass objects whose media the camera is inside, innermost last: every primary ray's
-    // medium stack (camera_medium.h).
+    // medium stack (camera_medium.h). Where the camera lies on a surface, those of the side its
+    // normal points to, and cameraMediaBehind those of the other side; else the two are the same.
     std::vector<std::uint32_t> cameraMedia;
+    std::vector<std::uint32_t> cameraMediaBehind;
     // Pending rays of a depth-first ray tree: only refractions wait (the reflection of a hit is
     // traced at once), so 0 without glass, else max_depth - 1 (docs/gpu-design.md shows why that
     // suffices), capped at gpu::kRayStackSize.

@@ -120,7 +120,7 @@ VITRUM_CONST uint kFresnelSchlickExp2 = 2u;
 // (shaders/bindings.glsl): a struct is this many consecutive texels (gpu_layout.h checks them
 // against the struct sizes). An object's medium is one texel: its material's `attenuation` (Tf, Ni).
 VITRUM_CONST uint kTraversalNodeTexels = 4u;
-VITRUM_CONST uint kRenderParamsTexels = 14u;
+VITRUM_CONST uint kRenderParamsTexels = 16u;
 VITRUM_CONST uint kTraceStateTexels = 16u;  // a storage buffer of uvec4s (shaders/suspend.glsl)
 VITRUM_CONST uint kTriangleVerticesTexels = 3u;
 VITRUM_CONST uint kTriangleShadingTexels = 5u;
@@ -140,7 +140,7 @@ struct RenderParams {
     uvec4 counts;      // light count, fresnel model, texture count, iteration budget per SIMD group and dispatch
     uvec4 tile;        // tile origin x, tile origin y, tile width, tile height
     uvec4 pass;        // x = media around the camera (cameraMedia); y = columns of the stratified
-                       // sample grid (rows = spp / columns)
+                       // sample grid (rows = spp / columns); z = media of cameraMediaBehind
     vec4 tuning;       // x = min weight, y = distance within which surfaces touch (1e-5 x scene
                        // diagonal), z = 1 when the scene has two or more glass objects (so
                        // surfaces of different objects can touch), else 0
@@ -152,6 +152,9 @@ struct RenderParams {
                        // scene of at most kMaxLeafTriangles triangles
     uvec4 cameraMedia; // the objects whose media the camera is inside, innermost last: every
                        // primary ray's medium stack (host/render/camera_medium.h); pass.x of them
+    vec4 cameraSurface;       // .xyz = unit normal of the surface the camera lies on, 0 if none:
+                              // primary rays start off it on their side (host/render/camera_surface.h)
+    uvec4 cameraMediaBehind;  // the media of primary rays that go against that normal; pass.z of them
 };
 
 // Numbered like vitrum::BackgroundKind and vitrum::TextureFilter.

@@ -70,5 +70,48 @@ TEST(CameraMedium, MoreMediaThanTheStackHoldsKeepsTheInnermostWithAWarning) {
     EXPECT_EQ(warningCount(), warnings + 1);
 }
 
+// The camera lies on a triangle when it is closer to it than the offset a ray starting there gets
+// along its normal (render/camera_surface.h): 32 float ulps of the coordinates here. Primary rays
+// then start off it, with the media of their side: above the top face of a glass box, air; below
+// it, the box.
+TEST(CameraSurface, TheCameraLiesOnATriangleWithinItsRayOffset) {
+    Scene scene = glassScene();
+    addGlassBox(scene, glm::vec3(-1.0f), glm::vec3(1.0f));
+    auto ulpsAbove = [](int n) {
+        float z = 1.0f;
+        for (int i = 0; i < n; ++i) z = std::nextafter(z, 2.0f);
+        return z;
+    };
+    for (int ulps : {0, 8, 31}) {
+        SCOPED_TRACE(ulps);
+        scene.camera.from = glm::vec3(0.3f, 0.2f, ulpsAbove(ulps));
+        const SceneFeatures f = analyseScene(scene);
+        EXPECT_EQ(f.cameraSurface.triangles, 1u);
+        EXPECT_EQ(f.cameraSurface.normal, glm::vec3(0.0f, 0.0f, 1.0f));
+        EXPECT_FALSE(f.cameraSurface.otherPlanes);
+        EXPECT_TRUE(f.cameraMedia.empty());
+        EXPECT_EQ(f.cameraMediaBehind, std::vector<std::uint32_t>{0});
+    }
+    for (float z : {ulpsAbove(33), 1.001f, 0.999f}) {
+        SCOPED_TRACE(z);
+        scene.camera.from = glm::vec3(0.3f, 0.2f, z);
+        const SceneFeatures f = analyseScene(scene);
+        EXPECT_EQ(f.cameraSurface.triangles, 0u);
+        EXPECT_EQ(f.cameraSurface.normal, glm::vec3(0.0f));
+        EXPECT_EQ(f.cameraMedia, f.cameraMediaBehind);
+        EXPECT_EQ(f.cameraMedia.size(), z < 1.0f ? 1u : 0u);
+    }
+    // On the diagonal the top face's two triangles share: one plane.
+    scene.camera.from = glm::vec3(0.5f, 0.5f, 1.0f);
+    EXPECT_EQ(analyseScene(scene).cameraSurface.triangles, 2u);
+    EXPECT_FALSE(analyseScene(scene).cameraSurface.otherPlanes);
+    // On an edge, where the top face meets a side at a right angle: the user is told.
+    scene.camera.from = glm::vec3(1.0f, 0.2f, 1.0f);
+    const int warnings = warningCount();
+    const SceneFeatures edge = analyseScene(scene);
+    EXPECT_TRUE(edge.cameraSurface.otherPlanes);
+    EXPECT_EQ(warningCount(), warnings + 1);
+}
+
 }  // namespace
 }  // namespace vitrum

@@ -536,6 +536,105 @@ TEST(HardCaseSelfIntersection, LitPlaneHasNoShadowAcneAtAnyScale) {
     }
 }
 
+// ---- A camera on a surface ------------------------------------------------------------------
+
+// Every pixel's largest channel difference between two images.
+float largestDifference(const Image& a, const Image& b) {
+    float largest = 0.0f;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) largest = std::max(largest, std::fabs(a.pixels[i][c] - b.pixels[i][c]));
+    return largest;
+}
+
+TEST(HardCaseCameraOnSurface, CameraOnAFloorSeesWhatItWouldWithoutTheFloor) {
+    // Eyes at floor level: the camera lies in the plane of a single-sided Lambert floor and looks
+    // along it at a Lambert sphere above it. Every primary ray starts on the floor, where rounding
+    // alone made about half of them hit it at t ~ 0 (a speckled image). A ray never re-hits the
+    // surface it starts on: the rays that go up start above the floor and see the sphere and the
+    // background, those that go down start below it and see the background. That is the image of
+    // the same scene without the floor, up to the rounding of the 32-ulp offset (the floor casts
+    // no shadow on the sphere: the light is above both). Scaled by 1e3 and 1e-3 too. (Moved 1e4
+    // away, the offset itself, 32 ulps of 1e4 = 0.03, moves the eye visibly, as it moves every
+    // secondary ray's origin there: docs/hard-cases.md.)
+    Scene scene = emptyScene(24, 16, 40.0f);
+    scene.background.colour = vec3(0.2f, 0.3f, 0.4f);
+    scene.lights.push_back({.position = {3.0f, -4.0f, 6.0f}, .colour = vec3(1.0f)});
+    scene.materials.push_back(material(MaterialModel::Lambert, vec3(0.7f, 0.5f, 0.3f), 1.5f, vec3(0.05f)));
+    scene.materials.push_back(material(MaterialModel::Lambert, vec3(0.3f, 0.6f, 0.9f), 1.5f, vec3(0.05f)));
+    scene.objectNames = {"sphere", "floor"};
+    addIcosphere(scene, {0.0f, 0.0f, 1.0f}, 0.8f, 1, 0);
+    const Scene withoutFloor = scene;
+    scene.triangles.push_back(makeTriangle({-10, -10, 0}, {10, -10, 0}, {10, 10, 0}, 0, 1));
+    scene.triangles.push_back(makeTriangle({-10, -10, 0}, {10, 10, 0}, {-10, 10, 0}, 0, 1));
+    EXPECT_EQ(analyseScene(scene).cameraSurface.triangles, 1u);  // (0, -5, 0) is on one of them
+    for (float scale : {1.0f, 1e3f, 1e-3f}) {
+        SCOPED_TRACE("scale " + std::to_string(scale));
+        RenderPair on = renderBoth(transformed(scene, scale, vec3(0.0f)));
+        RenderPair without = renderBoth(transformed(withoutFloor, scale, vec3(0.0f)));
+        EXPECT_GT(imageSpread(without.gpu), 0.05);  // the sphere is in view
+        EXPECT_LE(largestDifference(on.gpu, without.gpu), 1e-4f);
+        EXPECT_LE(largestDifference(on.cpu, without.cpu), 1e-4f);
+    }
+}
+
+TEST(HardCaseCameraOnSurface, CameraOnAGlassFaceLooksIntoTheGlassFromItsMedium) {
+    // The camera lies on the top face of a glass block (Ni 1.5, Tf 0.3) and looks down through it
+    // at a Lambert floor, lit from just above it. A ray that goes into the block starts in the
+    // glass's medium, past the face it starts on: it crosses no surface at the camera, and its
+    // medium stack holds the block when it leaves through the bottom face. That is what a camera
+    // just inside the face sees (here 1e-3 below it, 1/500 of the block's depth): the same image
+    // up to that shift. The scene is turned (25 degrees about x, then 40 about y), so that the
+    // face is no coordinate plane and the camera lies on it only up to rounding, where hits at
+    // t ~ 0 speckled the image.
+    Scene scene = emptyScene(16, 16, 50.0f);
+    scene.camera.from = {0.2f, 0.1f, 1.0f};
+    scene.camera.at = {0.0f, 0.3f, -1.0f};
+    scene.background.colour = vec3(0.8f, 0.9f, 1.0f);
+    scene.lights.push_back({.position = {1.5f, -1.0f, -2.5f}, .colour = vec3(1.0f)});
+    Material glass = material(MaterialModel::Glass, vec3(0.0f), 1.5f);
+    glass.attenuation = vec3(0.3f, 0.2f, 0.1f);
+    scene.materials.push_back(glass);
+    scene.materials.push_back(material(MaterialModel::Lambert, vec3(0.6f, 0.5f, 0.4f), 1.5f, vec3(0.1f)));
+    scene.objectNames = {"block", "floor"};
+    addBox(scene, {-3, -3, -1}, {3, 3, 1}, 0, 0);
+    scene.triangles.push_back(makeTriangle({-20, -20, -3}, {20, -20, -3}, {20, 20, -3}, 1, 1));
+    scene.triangles.push_back(makeTriangle({-20, -20, -3}, {20, 20, -3}, {-20, 20, -3}, 1, 1));
+    Scene inside = scene;
+    inside.camera.from.z -= 1e-3f;
+    inside.camera.at.z -= 1e-3f;
+    const double a = glm::radians(25.0), b = glm::radians(40.0);
+    const glm::dmat3 turn = glm::dmat3(std::cos(b), 0, -std::sin(b), 0, 1, 0, std::sin(b), 0, std::cos(b)) *
+                            glm::dmat3(1, 0, 0, 0, std::cos(a), std::sin(a), 0, -std::sin(a), std::cos(a));
+    auto turned = [&](Scene s) {
+        auto move = [&](vec3& p) { p = vec3(turn * glm::dvec3(p)); };
+        for (Triangle& t : s.triangles) {
+            for (vec3& p : t.position) move(p);
+            for (vec3& n : t.normal) move(n);
+        }
+        move(s.camera.from);
+        move(s.camera.at);
+        s.camera.up = vec3(turn * glm::dvec3(s.camera.up));
+        for (PointLight& l : s.lights) move(l.position);
+        return s;
+    };
+    scene = turned(scene);
+    inside = turned(inside);
+    const SceneFeatures onFace = analyseScene(scene);
+    EXPECT_GT(glm::dot(glm::dvec3(onFace.cameraSurface.normal), turn * glm::dvec3(0, 0, 1)), 1.0 - 1e-6);
+    EXPECT_TRUE(onFace.cameraMedia.empty());                             // above the face: air
+    EXPECT_EQ(onFace.cameraMediaBehind, std::vector<std::uint32_t>{0});  // below it: the block
+    ASSERT_EQ(analyseScene(inside).cameraMedia, std::vector<std::uint32_t>{0});
+    RenderPair on = renderBoth(scene);
+    RenderPair below = renderBoth(inside);
+    expectImagesMatch(on);
+    EXPECT_EQ(on.gpuStats.limits.inconsistentMedia, 0u);
+    EXPECT_EQ(on.cpuStats.limits.inconsistentMedia, 0u);
+    for (const Image* image : {&on.gpu, &on.cpu}) {
+        const ImageDiff d = diffImages(*image, image == &on.gpu ? below.gpu : below.cpu);
+        EXPECT_LE(d.maxAbsError, 2e-3) << "mean " << d.meanAbsError;
+    }
+}
+
 // ---- Touching and coincident surfaces -----------------------------------------------------
 
 TEST(HardCaseTouching, CoincidentSurfacesStayFiniteAndMatchOnBothBackends) {
