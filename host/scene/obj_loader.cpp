@@ -43,6 +43,18 @@ std::string_view firstWord(std::string_view line, std::size_t* end = nullptr) {
     return line.substr(begin, stop - begin);
 }
 
+// The digits of a number's decimal exponent, leading zeros left out: "1e-0012" has 2.
+std::size_t exponentDigits(std::string_view number) {
+    std::size_t at = number.find_first_of("eE");
+    if (at == std::string_view::npos) return 0;
+    ++at;
+    if (at < number.size() && (number[at] == '+' || number[at] == '-')) ++at;
+    while (at < number.size() && number[at] == '0') ++at;
+    std::size_t digits = 0;
+    while (at + digits < number.size() && number[at + digits] >= '0' && number[at + digits] <= '9') ++digits;
+    return digits;
+}
+
 // What tinyobjloader does not tell: it reads "nan" or an unparsable coordinate as 0 and has no
 // line numbers for its own checks, so vertex lines are checked here first. Also notes the
 // mtllib and usemtl statements, and a line that can hold an inserted mtllib statement.
@@ -103,6 +115,17 @@ ObjScan scanObj(const fs::path& file, std::string_view text) {
                     part = slash + 1;
                 }
                 rest = rest.substr(cornerEnd);
+            }
+        } else if (word == "vn" || word == "vt" || word == "vp") {
+            // tinyobjloader reads an exponent into an int that overflows (undefined behaviour) at
+            // ten digits or more (found by fuzzing); such a number is 0 or infinite anyway.
+            for (std::string_view rest = line.substr(wordEnd);;) {
+                std::size_t numberEnd = 0;
+                std::string_view number = firstWord(rest, &numberEnd);
+                if (number.empty()) break;
+                if (exponentDigits(number) > 9)
+                    throw inputError(file, lineNumber, "the exponent of " + quoteInput(number) + " is out of range");
+                rest = rest.substr(numberEnd);
             }
         } else if (word == "vw") {
             scan.skinWeights.push_back(begin + std::size_t(word.data() - line.data()));

@@ -10,6 +10,7 @@
 
 #include "common/error.h"
 #include "image/image.h"
+#include "render/scene_features.h"
 #include "scene/scene_loader.h"
 
 namespace vitrum {
@@ -66,7 +67,7 @@ int fuzzObjMtl(const std::uint8_t* data, std::size_t size) {
     else
         writeFile("fuzz.mtl", bytes.substr(split + 1));
     try {
-        loadScene(folder() / "fuzz.obj");
+        analyseScene(loadScene(folder() / "fuzz.obj"));
     } catch (const InputError&) {
     }
     return 0;
@@ -91,7 +92,7 @@ int fuzzSceneJson(const std::uint8_t* data, std::size_t size) {
     (void)triangleWritten;
     writeFile("scene.json", asText(data, size));
     try {
-        loadScene(folder() / "scene.json");
+        analyseScene(loadScene(folder() / "scene.json"));
     } catch (const InputError&) {
     }
     return 0;
