@@ -106,14 +106,16 @@ TEST_F(CliBadInput, HugeFaceIndicesAreErrors) {
 // with an exponent of ten digits is refused with its line; nine digits, or leading zeros, are read.
 TEST_F(CliBadInput, NumbersWithHugeExponentsAreErrors) {
     const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-    for (const char* line : {"vn 0 0 1e-2147483648", "vn 0 0 1E+2147483648", "vt 0.5 5e12345678901", "vp 1e2147483649"}) {
+    for (const char* line :
+         {"vn 0 0 1e-2147483648", "vn 0 0 1E+2147483648", "vt 0.5 5e12345678901", "vp 1e2147483649"}) {
         SCOPED_TRACE(line);
         expectRefused(write("exp.obj", triangle + line + "\nf 1 2 3\n"), {"exp.obj:4:", "exponent", "out of range"});
     }
     for (const char* line : {"vn 0 0 1e-999999999", "vt 0.5 0.5e-0000000000001"}) {
         SCOPED_TRACE(line);
         write("exp.obj", triangle + line + "\nf 1 2 3\n");
-        CommandRun r = vitrum("render " + path("exp.obj") + " --width 4 --height 4 --backend cpu -o " + path("out.png"));
+        CommandRun r =
+            vitrum("render " + path("exp.obj") + " --width 4 --height 4 --backend cpu -o " + path("out.png"));
         EXPECT_EQ(r.exitCode, 0) << r.output;
     }
 }
