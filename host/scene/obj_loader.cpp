@@ -56,7 +56,8 @@ std::size_t exponentDigits(std::string_view number) {
 }
 
 // What tinyobjloader does not tell: it reads "nan" or an unparsable coordinate as 0 and has no
-// line numbers for its own checks, so vertex lines are checked here first. Also notes the
+// line numbers for its own checks, so vertex lines (and face indices and exponents it would read
+// with overflows) are checked here first. Also notes the
 // mtllib and usemtl statements, and a line that can hold an inserted mtllib statement.
 struct ObjScan {
     std::vector<std::size_t> skinWeights;  // where each "vw" statement begins
