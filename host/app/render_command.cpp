@@ -124,7 +124,7 @@ RenderCommand parse(int argc, char** argv, int first) {
         else if (flag == "--camera-up") c.up = Arguments::toVec3(flag, args.valueOf(flag));
         else if (flag == "--fov") {
             float f = Arguments::toFloat(flag, args.valueOf(flag));
-            if (!validFovY(f)) throw InputError("--fov must be between 0.5 and 179.5 degrees (exclusive)");
+            if (!validFovY(f)) throw InputError(std::string("--fov must be ") + kFovYRange);
             c.fov = f;
         } else if (flag == "--light") c.lights.push_back(Arguments::toVec3(flag, args.valueOf(flag)));
         else if (flag == "--background") {

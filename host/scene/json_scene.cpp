@@ -251,7 +251,7 @@ private:
         if (const json* x = member(v, "up")) c.up = vector3(*x, path + "/up");
         if (const json* x = member(v, "fov_y"))
             c.fovY = float(number(
-                *x, path + "/fov_y", validFovY, "a number of degrees between 0.5 and 179.5 (exclusive)"));
+                *x, path + "/fov_y", validFovY, std::string("a number ") + kFovYRange));
         if (const json* x = member(v, "width")) c.width = integer(*x, path + "/width", 1, 16384);
         if (const json* x = member(v, "height")) c.height = integer(*x, path + "/height", 1, 16384);
         const glm::vec3 view = c.from - c.at;

@@ -59,6 +59,8 @@ struct PointLight {
 // a keyhole, short of the 180 degrees at which the image plane would be infinitely large.
 constexpr double kMinFovY = 0.5, kMaxFovY = 179.5;
 inline bool validFovY(double degrees) { return degrees > kMinFovY && degrees < kMaxFovY; }
+// The range as messages state it (tests/core/scene_loader_test.cpp holds it to the two numbers).
+inline constexpr const char* kFovYRange = "between 0.5 and 179.5 degrees (exclusive)";
 
 struct Camera {
     glm::vec3 from{0.0f, -5.0f, 0.0f};

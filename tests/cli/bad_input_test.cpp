@@ -182,6 +182,7 @@ TEST_F(CliBadInput, AbsurdValuesInTheSceneFileNameTheKey) {
                           Case{R"("air_ior": 0)", "air_ior"}, Case{R"("render": {"min_weight": -1})", "min_weight"}}) {
         expectRefused(scene(c.line), {"scene.json:2:", c.key});
     }
+    expectRefused(scene(camera + R"("fov_y": 179.5})"), {"scene.json:2:", "between 0.5 and 179.5 degrees"});
 }
 
 TEST_F(CliBadInput, AbsurdValuesOnTheCommandLineNameTheOption) {
@@ -189,6 +190,7 @@ TEST_F(CliBadInput, AbsurdValuesOnTheCommandLineNameTheOption) {
                                "--fov 0", "--fov 0.4", "--fov 179.6", "--spp 1e3", "--threads 0", "--tile 1"}) {
         expectRefused(kGeosphere + " --backend cpu " + option, {option.substr(0, option.find(' '))});
     }
+    expectRefused(kGeosphere + " --backend cpu --fov 0.5", {"--fov", "between 0.5 and 179.5 degrees"});
 }
 
 TEST_F(CliBadInput, UnknownKeysOnlyWarn) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <glm/glm.hpp>
@@ -65,6 +66,16 @@ void expectVec3Near(glm::vec3 a, glm::vec3 b, float tolerance = 1e-5f) {
 const std::string kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 
 // ---------------------------------------------------------------------------------------- OBJ
+
+// The field of view's range as messages state it names the two numbers validFovY tests.
+TEST(SceneCamera, TheFieldOfViewsRangeTextNamesItsBounds) {
+    char bounds[64];
+    std::snprintf(bounds, sizeof bounds, "between %g and %g degrees", kMinFovY, kMaxFovY);
+    EXPECT_EQ(std::string(kFovYRange).rfind(bounds, 0), 0u) << kFovYRange;
+    EXPECT_FALSE(validFovY(kMinFovY));
+    EXPECT_TRUE(validFovY(std::nextafter(kMinFovY, 1.0)));
+    EXPECT_FALSE(validFovY(kMaxFovY));
+}
 
 TEST(SceneObj, CourseTriangleAndObjectCounts) {
     struct Case {
