@@ -28,8 +28,7 @@ glm::dvec3 closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, cons
 
 }  // namespace
 
-CameraSurface cameraSurface(const Scene& scene) {
-    const RayOffsetScale scale = rayOffsetScale(scene.triangles);
+CameraSurface cameraSurface(const Scene& scene, const RayOffsetScale& scale) {
     const glm::vec3 from = scene.camera.from;
     const glm::dvec3 camera(from);
     // No offset along a unit normal is longer than this: a triangle whose box is farther from the

@@ -28,7 +28,8 @@ struct CameraSurface {
     bool otherPlanes = false;
 };
 
-CameraSurface cameraSurface(const Scene& scene);
+// `scale`: the scene's ray offsets (rayOffsetScale), as the renderers use them.
+CameraSurface cameraSurface(const Scene& scene, const RayOffsetScale& scale);
 
 // Where a primary ray of direction `d` starts: off the camera's surface (`normal`, from
 // CameraSurface) on the side `d` goes to, along +normal where d is parallel to it; `from` itself

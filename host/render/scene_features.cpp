@@ -131,9 +131,9 @@ SceneFeatures analyseScene(const Scene& scene) {
     f.touchingMediaPossible = mostOverlaps > 0 && findCloseGlassTriangles(scene, margin).found;
     const std::set<std::uint32_t> open = openGlassObjects(scene);
     f.openGlassObjects = std::uint32_t(open.size());
-    f.cameraSurface = cameraSurface(scene);
     // A primary ray's media are those where it starts: off the camera's surface on its side.
     const RayOffsetScale offsets = rayOffsetScale(scene.triangles);
+    f.cameraSurface = cameraSurface(scene, offsets);
     const glm::vec3 from = scene.camera.from;
     const glm::vec3 normal = f.cameraSurface.normal;
     f.cameraMedia = cameraMedia(scene, open, glm::dvec3(offsetRayOrigin(from, normal, offsets)));
