@@ -374,18 +374,6 @@ Scene emptyScene(std::uint32_t width = 9, std::uint32_t height = 9, float fov = 
     return scene;
 }
 
-// Every position of the scene (triangles, camera, lights) times `scale` plus `shift`; absorption
-// scaled by 1 / scale so that the image stays the same.
-Scene transformed(Scene scene, float scale, vec3 shift) {
-    for (Triangle& t : scene.triangles)
-        for (vec3& p : t.position) p = p * scale + shift;
-    scene.camera.from = scene.camera.from * scale + shift;
-    scene.camera.at = scene.camera.at * scale + shift;
-    for (PointLight& l : scene.lights) l.position = l.position * scale + shift;
-    for (Material& m : scene.materials) m.attenuation /= scale;
-    return scene;
-}
-
 bool finitePixels(const Image& image) {
     for (const vec3& p : image.pixels)
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;

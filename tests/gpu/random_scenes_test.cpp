@@ -79,7 +79,7 @@ public:
                                                 std::sin(angle) * std::cos(elevation), std::sin(elevation));
         }
         scene.camera.at = vec3(uniform(-1, 1), uniform(-1, 1), uniform(-1, 0.5f));
-        return scaled(scene, pick({1.0f, 1.0f, 1e-3f, 1e3f}));
+        return transformed(scene, pick({1.0f, 1.0f, 1e-3f, 1e3f}));
     }
 
 private:
@@ -115,17 +115,6 @@ private:
         for (const glm::uvec3& f : mesh.faces)
             scene.triangles.push_back(
                 makeTriangle(mesh.vertices[f.x], mesh.vertices[f.y], mesh.vertices[f.z], material, object));
-    }
-
-    // Every position times `s`, absorption divided by it: the same image, other coordinates.
-    static Scene scaled(Scene scene, float s) {
-        for (Triangle& t : scene.triangles)
-            for (vec3& p : t.position) p *= s;
-        scene.camera.from *= s;
-        scene.camera.at *= s;
-        for (PointLight& l : scene.lights) l.position *= s;
-        for (Material& m : scene.materials) m.attenuation /= s;
-        return scene;
     }
 
     std::mt19937 rng_;
