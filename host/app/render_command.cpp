@@ -24,7 +24,12 @@
 namespace vitrum {
 namespace {
 
-const char* kRenderHelp = R"(usage: vitrum render SCENE -o OUT [options]
+// The ranges and defaults come from the constants the parser and the scene file use.
+std::string renderHelp() {
+    const VulkanRenderOptions gpuDefaults;
+    const RenderSettings defaults;
+    const std::string side = std::to_string(kMaxImageSide);
+    return R"(usage: vitrum render SCENE -o OUT [options]
 
 Renders SCENE (a .json scene file or a bare .obj) and writes OUT: .png (8-bit sRGB), .pfm,
 .hdr or .exr (linear). Options override the scene's own settings.
@@ -35,25 +40,32 @@ Renders SCENE (a .json scene file or a bare .obj) and writes OUT: .png (8-bit sR
                            else lavapipe
   --precision float|double CPU reference arithmetic (default float)
   --threads N              CPU reference threads (default: all)
-  --width N, --height N    image size in pixels (1..16384)
-  --spp N                  samples per pixel (1..4096): 1 = pixel centre, more = stratified jitter
-  --max-depth N            rays are traced while their depth is below N (0..64; default 10)
+  --width N, --height N    image size in pixels (1..)" +
+           side + R"()
+  --spp N                  samples per pixel (1..)" +
+           std::to_string(kMaxSamplesPerPixel) + R"(): 1 = pixel centre, more = stratified jitter
+  --max-depth N            rays are traced while their depth is below N (0..)" +
+           std::to_string(kMaxRayDepth) + "; default " + std::to_string(defaults.maxDepth) + R"()
   --min-weight W           skip branches whose path weight is below W in every channel (default 0)
   --fresnel MODEL          schlick (default) | exact | schlick-exp2, for glass
   --filter MODE            bilinear (default) | nearest: textures and environment maps
   --camera-from X,Y,Z      camera position
   --camera-at X,Y,Z        camera target
   --camera-up X,Y,Z        camera up vector
-  --fov DEG                vertical field of view in degrees (0.5..179.5, exclusive)
+  --fov DEG                vertical field of view, )" +
+           kFovYRange + R"(
   --light X,Y,Z            a white point light; repeatable; replaces the scene's lights
   --background R,G,B       constant background colour, linear RGB
   --stats FILE.json        write device, times by phase, rays by kind and limits hit
   --iteration-budget N     GPU loop steps per subgroup (8 pixels on lavapipe) and dispatch
-                           (default 49152; lavapipe silently stops loops at 65,535)
-  --tile N                 GPU tile size in pixels (default 256)
+                           (default )" +
+           std::to_string(gpuDefaults.iterationBudget) + R"(; lavapipe silently stops loops at 65,535)
+  --tile N                 GPU tile size in pixels (default )" +
+           std::to_string(gpuDefaults.tileSize) + R"()
   --no-specialize          GPU: the general kernel instead of one built for what the scene
                            needs (same image; for comparison, docs/specialization.md)
 )";
+}
 
 enum class Backend { Vulkan, Cpu };
 
@@ -100,10 +112,10 @@ RenderCommand parse(int argc, char** argv, int first) {
             if (v != "float" && v != "double") throw InputError("--precision must be float or double, got \"" + v + "\"");
             c.doublePrecision = v == "double";
         } else if (flag == "--threads") c.threads = Arguments::toUint(flag, args.valueOf(flag), 1, 1024);
-        else if (flag == "--width") c.width = Arguments::toUint(flag, args.valueOf(flag), 1, 16384);
-        else if (flag == "--height") c.height = Arguments::toUint(flag, args.valueOf(flag), 1, 16384);
-        else if (flag == "--spp") c.spp = Arguments::toUint(flag, args.valueOf(flag), 1, 4096);
-        else if (flag == "--max-depth") c.maxDepth = Arguments::toUint(flag, args.valueOf(flag), 0, 64);
+        else if (flag == "--width") c.width = Arguments::toUint(flag, args.valueOf(flag), 1, kMaxImageSide);
+        else if (flag == "--height") c.height = Arguments::toUint(flag, args.valueOf(flag), 1, kMaxImageSide);
+        else if (flag == "--spp") c.spp = Arguments::toUint(flag, args.valueOf(flag), 1, kMaxSamplesPerPixel);
+        else if (flag == "--max-depth") c.maxDepth = Arguments::toUint(flag, args.valueOf(flag), 0, kMaxRayDepth);
         else if (flag == "--min-weight") {
             float w = Arguments::toFloat(flag, args.valueOf(flag));
             if (w < 0 || w > 1) throw InputError("--min-weight must be between 0 and 1");
@@ -243,7 +255,7 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
 int renderCommand(int argc, char** argv, int first) {
     for (int i = first; i < argc; ++i)
         if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
-            std::cout << kRenderHelp;
+            std::cout << renderHelp();
             return 0;
         }
     RenderCommand command = parse(argc, argv, first);

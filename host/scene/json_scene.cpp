@@ -175,8 +175,9 @@ private:
         requireObject(v, path);
         checkKeys(v, path, {"spp", "max_depth", "fresnel", "min_weight", "filter"});
         RenderSettings s;
-        if (const json* x = member(v, "spp")) s.samplesPerPixel = integer(*x, path + "/spp", 1, 4096);
-        if (const json* x = member(v, "max_depth")) s.maxDepth = integer(*x, path + "/max_depth", 0, 64);
+        if (const json* x = member(v, "spp"))
+            s.samplesPerPixel = integer(*x, path + "/spp", 1, int(kMaxSamplesPerPixel));
+        if (const json* x = member(v, "max_depth")) s.maxDepth = integer(*x, path + "/max_depth", 0, int(kMaxRayDepth));
         if (const json* x = member(v, "fresnel"))
             s.fresnel = choice<FresnelModel>(*x, path + "/fresnel",
                                              {{"schlick", FresnelModel::Schlick},
@@ -252,8 +253,8 @@ private:
         if (const json* x = member(v, "fov_y"))
             c.fovY = float(number(
                 *x, path + "/fov_y", validFovY, std::string("a number ") + kFovYRange));
-        if (const json* x = member(v, "width")) c.width = integer(*x, path + "/width", 1, 16384);
-        if (const json* x = member(v, "height")) c.height = integer(*x, path + "/height", 1, 16384);
+        if (const json* x = member(v, "width")) c.width = integer(*x, path + "/width", 1, int(kMaxImageSide));
+        if (const json* x = member(v, "height")) c.height = integer(*x, path + "/height", 1, int(kMaxImageSide));
         const glm::vec3 view = c.from - c.at;
         if (!(glm::length(view) > 0.0f)) fail(path + "/at", "\"at\" must differ from \"from\"");
         const float upLength = glm::length(c.up);

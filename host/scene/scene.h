@@ -62,6 +62,10 @@ inline bool validFovY(double degrees) { return degrees > kMinFovY && degrees < k
 // The range as messages state it (tests/core/scene_loader_test.cpp holds it to the two numbers).
 inline constexpr const char* kFovYRange = "between 0.5 and 179.5 degrees (exclusive)";
 
+// The most a scene file or the command line may ask for: pixels along each side of the image,
+// samples a pixel, and max_depth (the ray tree's depth, render model).
+constexpr std::uint32_t kMaxImageSide = 16384, kMaxSamplesPerPixel = 4096, kMaxRayDepth = 64;
+
 struct Camera {
     glm::vec3 from{0.0f, -5.0f, 0.0f};
     glm::vec3 at{0.0f};

@@ -147,6 +147,48 @@ TEST_F(Cli, HelpIsThereForEveryCommand) {
     }
 }
 
+// What `render --help` says an option accepts is what the command accepts: each range's upper end
+// read from the help text passes the option's check (the command goes on, and fails only on the
+// scene file that is not there), and the next value up is refused, naming the option.
+TEST_F(Cli, RenderHelpStatesTheRangesTheOptionsAccept) {
+    const std::string help = vitrum("render --help").output;
+    const std::string missingScene = path("missing.json");
+    auto expectAccepted = [&](const std::string& option) {
+        CommandRun r = vitrum("render " + missingScene + " " + option + " -o " + path("out.png"));
+        EXPECT_EQ(r.exitCode, 1) << option << "\n" << r.output;
+        EXPECT_NE(r.output.find("missing.json"), std::string::npos) << option << " was refused:\n" << r.output;
+    };
+    auto expectRefused = [&](const std::string& option) {
+        CommandRun r = vitrum("render " + missingScene + " " + option + " -o " + path("out.png"));
+        EXPECT_EQ(r.exitCode, 1) << option << "\n" << r.output;
+        EXPECT_NE(r.output.find(option.substr(0, option.find(' '))), std::string::npos) << option << "\n" << r.output;
+        EXPECT_EQ(r.output.find("missing.json"), std::string::npos) << option << " was accepted:\n" << r.output;
+    };
+    // "--spp N   samples per pixel (1..4096)": the number after "..", on the option's line.
+    auto upperEnd = [&](const std::string& line) -> long {
+        const std::size_t at = help.find("\n  " + line);
+        const std::size_t dots = help.find("..", at);
+        if (at == std::string::npos || dots == std::string::npos || dots > help.find('\n', at + 1)) return -1;
+        return std::stol(help.substr(dots + 2));
+    };
+    for (std::string option : {"--width", "--spp", "--max-depth"}) {
+        const long most = upperEnd(option);
+        ASSERT_GT(most, 0) << "no range for " << option << " in\n" << help;
+        expectAccepted(option + " " + std::to_string(most));
+        expectRefused(option + " " + std::to_string(most + 1));
+    }
+    expectAccepted("--height " + std::to_string(upperEnd("--width")));  // the line "--width N, --height N"
+    expectRefused("--height " + std::to_string(upperEnd("--width") + 1));
+    // "--fov DEG   vertical field of view, between 0.5 and 179.5 degrees (exclusive)"
+    float lowest = 0, highest = 0;
+    const std::size_t fov = help.find("between ", help.find("\n  --fov"));
+    ASSERT_EQ(std::sscanf(help.c_str() + fov, "between %f and %f degrees (exclusive)", &lowest, &highest), 2) << help;
+    expectRefused("--fov " + std::to_string(lowest));
+    expectAccepted("--fov " + std::to_string(lowest + 0.01f));
+    expectAccepted("--fov " + std::to_string(highest - 0.01f));
+    expectRefused("--fov " + std::to_string(highest));
+}
+
 // Each device with its subgroups and limits. lavapipe on a 256-bit CPU runs 8 lanes a SIMD group
 // and has full subgroups (the platform facts of DEVELOPERS.md), so trace.comp sums its statistics
 // by shuffles there.
