@@ -194,6 +194,7 @@ nlohmann::json toJson(const SceneFeatures& f) {
         {"medium_stack_depth", f.mediumStackDepth},
         {"camera_media", f.cameraMedia},
         {"camera_surface_triangles", f.cameraSurface.triangles},
+        {"camera_media_behind_surface", f.cameraMediaBehind},
         {"reflection", f.reflection},
         {"ray_stack_depth", f.rayStackDepth},
         {"shadow_rays", f.shadowRays},

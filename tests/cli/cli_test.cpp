@@ -233,6 +233,26 @@ TEST_F(Cli, InfoSaysWhichMediaTheCameraIsIn) {
         << inside.output;
 }
 
+// one_box.json with its camera on the middle of the glass box's top face (z = 0.5), where the
+// face's two triangles meet: rays going up start in air, rays going down in the box (object 1).
+TEST_F(Cli, StatsSayWhereTheCameraLies) {
+    const std::string box = std::string(VITRUM_SOURCE_DIR) + "/scenes/one_box.json --width 8 --height 6";
+    CommandRun r = vitrum("render " + box + " --camera-from 0,0,0.5 --camera-at 0.3,0,-0.5 -o " + path("on.png") +
+                          " --stats " + path("on.json"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    nlohmann::json on = nlohmann::json::parse(std::ifstream(path("on.json")))["features"];
+    EXPECT_EQ(on["camera_surface_triangles"], 2);
+    EXPECT_EQ(on["camera_media"], nlohmann::json::array());
+    EXPECT_EQ(on["camera_media_behind_surface"], nlohmann::json::array({1}));
+    r = vitrum("render " + box + " --camera-from 0,0,0.4 --camera-at 0.3,0,-0.5 -o " + path("in.png") + " --stats " +
+               path("in.json"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    nlohmann::json in = nlohmann::json::parse(std::ifstream(path("in.json")))["features"];
+    EXPECT_EQ(in["camera_surface_triangles"], 0);
+    EXPECT_EQ(in["camera_media"], nlohmann::json::array({1}));
+    EXPECT_EQ(in["camera_media_behind_surface"], nlohmann::json::array({1}));
+}
+
 }  // namespace
 
 namespace {
