@@ -1,7 +1,9 @@
-// Traversal alone on the device (bench/trace_only/trace_rays.comp): a list of rays traced with
-// vitrum's own traversal, one ray an invocation, nothing else. bench/whitted_bench.cpp times it
-// on the Whitted workload's rays, in the order a wavefront renderer would trace them, to measure
-// what such a renderer's trace passes would cost against the whole kernel and Embree.
+// Traversal alone on the device: a list of rays traced with vitrum's own traversal, one ray an
+// invocation, nothing else (bench/trace_only/trace_rays.comp), or one ray a subgroup over the
+// tree's 8-wide collapse (trace_rays_wide.comp). bench/whitted_bench.cpp times them on the
+// Whitted workload's rays, in the kernel's order and in the order a wavefront renderer would
+// trace them, to measure what the rest of the kernel and such a renderer's trace passes cost
+// against the whole kernel and Embree.
 #pragma once
 
 #include <array>
@@ -19,6 +21,8 @@
 #include "ray_schedules.h"
 #include "render/traversal_nodes.h"
 #include "trace_rays.spv.h"
+#include "trace_rays_wide.spv.h"
+#include "wide_bvh.h"
 
 namespace vitrum::bench {
 
@@ -26,10 +30,37 @@ class TraceOnlyKernel {
 public:
     // `order`: the rays to trace, in the order the kernel's invocations take them; an invocation
     // given bench::kIdleLane traces nothing, as a lane of trace.comp without a ray waits.
+    // trace_rays.comp on vitrum's binary tree:
     TraceOnlyKernel(const VulkanDevice& device, const TraversalNodes& tree,
                     std::span<const gpu::TriangleVertices> triangles, std::span<const TracedRay> rays,
                     std::span<const std::size_t> order)
-        : pipeline_(device, std::span<const std::uint32_t>(trace_rays_spv),
+        : TraceOnlyKernel(device, trace_rays_spv, nodeTexels(tree), tree.rootEntry, triangles, rays, order) {}
+    // trace_rays_wide.comp on the same tree collapsed into 8-wide nodes (wide_bvh.h):
+    TraceOnlyKernel(const VulkanDevice& device, const WideBvh& tree, std::span<const gpu::TriangleVertices> triangles,
+                    std::span<const TracedRay> rays, std::span<const std::size_t> order)
+        : TraceOnlyKernel(device, trace_rays_wide_spv, tree.texels, tree.rootEntry, triangles, rays, order) {}
+
+    // Seconds to trace every ray once (the first call includes lavapipe's compile).
+    double trace(VulkanDevice& device) const {
+        constexpr std::uint32_t kGroupSize = 64, kMaxGroupsX = 32768;
+        const std::uint32_t groups = (count_ + kGroupSize - 1) / kGroupSize;
+        const std::uint32_t groupsX = std::min(groups, kMaxGroupsX);
+        const std::uint32_t groupsY = (groups + groupsX - 1) / groupsX;
+        const auto start = std::chrono::steady_clock::now();
+        device.submitAndWait([&](VkCommandBuffer commands) { pipeline_.record(commands, groupsX, groupsY); });
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+
+    // Ray k of `order`: .x = the closest (or some) hit's t, or -1; .z = 1 when its traversal is
+    // over; .w = the steps its SIMD group ran.
+    const glm::vec4& hit(std::size_t k) const { return hits_.as<glm::vec4>()[k]; }
+
+private:
+    template <std::size_t N>
+    TraceOnlyKernel(const VulkanDevice& device, const std::uint32_t (&spirv)[N], std::span<const glm::vec4> nodes,
+                    std::uint32_t rootEntry, std::span<const gpu::TriangleVertices> triangles,
+                    std::span<const TracedRay> rays, std::span<const std::size_t> order)
+        : pipeline_(device, std::span<const std::uint32_t>(spirv),
                     std::array<VkDescriptorType, 5>{VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER,
                                                     VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER,
                                                     VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER,
@@ -49,12 +80,10 @@ public:
             texels.emplace_back(r.origin, r.tMin);
             texels.emplace_back(r.direction, r.anyHit ? -r.tMax : r.tMax);
         }
-        const std::vector<gpu::TraversalNode> nodes =
-            tree.nodes.empty() ? std::vector<gpu::TraversalNode>(1) : tree.nodes;
-        nodes_ = makeTexelBuffer(device, std::span<const gpu::TraversalNode>(nodes), "trace-only nodes");
+        nodes_ = makeTexelBuffer(device, nodes, "trace-only nodes");
         triangles_ = makeTexelBuffer(device, triangles, "trace-only triangles");
         rays_ = makeTexelBuffer(device, std::span<const glm::vec4>(texels), "trace-only rays");
-        const glm::uvec4 control(tree.rootEntry, count_, 0u, 0u);
+        const glm::uvec4 control(rootEntry, count_, 0u, 0u);
         control_ = makeStorageBuffer(device, std::span<const glm::uvec4>(&control, 1), "trace-only control");
         hits_ = GpuBuffer(device, std::max<VkDeviceSize>(16, VkDeviceSize(count_) * sizeof(glm::vec4)),
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "trace-only hits");
@@ -62,22 +91,15 @@ public:
         pipeline_.bind(bound);
     }
 
-    // Seconds to trace every ray once (the first call includes lavapipe's compile).
-    double trace(VulkanDevice& device) const {
-        constexpr std::uint32_t kGroupSize = 64, kMaxGroupsX = 32768;
-        const std::uint32_t groups = (count_ + kGroupSize - 1) / kGroupSize;
-        const std::uint32_t groupsX = std::min(groups, kMaxGroupsX);
-        const std::uint32_t groupsY = (groups + groupsX - 1) / groupsX;
-        const auto start = std::chrono::steady_clock::now();
-        device.submitAndWait([&](VkCommandBuffer commands) { pipeline_.record(commands, groupsX, groupsY); });
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // The binary tree's nodes as texels (one node, unused, for a tree that is one leaf).
+    static std::vector<glm::vec4> nodeTexels(const TraversalNodes& tree) {
+        const std::vector<gpu::TraversalNode> nodes =
+            tree.nodes.empty() ? std::vector<gpu::TraversalNode>(1) : tree.nodes;
+        std::vector<glm::vec4> texels;
+        for (const gpu::TraversalNode& n : nodes) texels.insert(texels.end(), {n.min0, n.max0, n.min1, n.max1});
+        return texels;
     }
 
-    // Ray k of `order`: .x = the closest (or some) hit's t, or -1; .z = 1 when its traversal is
-    // over; .w = the steps its SIMD group ran.
-    const glm::vec4& hit(std::size_t k) const { return hits_.as<glm::vec4>()[k]; }
-
-private:
     ComputePipeline pipeline_;
     GpuBuffer nodes_, triangles_, rays_, control_, hits_;
     std::uint32_t count_;

@@ -21,6 +21,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -194,6 +195,19 @@ void checkTraceOnly(const bench::TraceOnlyKernel& kernel, const std::vector<std:
                                  std::to_string(checked - agree) + " of " + std::to_string(checked) + " rays");
 }
 
+// The SIMD groups' iterations over the rays they traced: each invocation of a trace-only kernel
+// writes its group's count, so the first of each group's `lanes` holds it.
+double groupStepsPerRay(const bench::TraceOnlyKernel& kernel, const std::vector<std::size_t>& order,
+                        std::uint32_t lanes) {
+    double steps = 0;
+    std::size_t traced = 0;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        if (k % lanes == 0) steps += kernel.hit(k).w;
+        traced += order[k] != bench::kIdleLane;
+    }
+    return steps / double(std::max<std::size_t>(1, traced));
+}
+
 // What each ray costs vitrum's CPU traversal: nodes visited, triangles tested, and one.
 std::vector<double> traversalSteps(const Bvh& bvh, std::span<const gpu::TriangleVertices> triangles,
                                    const std::vector<TracedRay>& rays) {
@@ -249,10 +263,15 @@ int run(int argc, char** argv) {
         const bench::TraceOnlyKernel scheduled(device, tree, triangles, rays, scheduleOrder);
         const bench::TraceOnlyKernel compacted(device, tree, triangles, rays, compactedOrder);
         const bench::TraceOnlyKernel sorted(device, tree, triangles, rays, sortedOrder);
+        // One ray a subgroup needs a lane for each of a wide node's 8 children.
+        const std::uint32_t lanes = std::max(1u, device.subgroups().size);
+        const bench::WideBvh wideTree = bench::makeWideBvh(bvh.nodes);
+        std::optional<bench::TraceOnlyKernel> wide;
+        if (lanes >= bench::kWideChildren) wide.emplace(device, wideTree, triangles, rays, scheduleOrder);
 
         // vitrum on lavapipe and Embree take turns, so that the machine's drifts fall on both
         // alike. The first round (vitrum's compile, Embree's first touch of its data) is not counted.
-        std::vector<double> gpuTimes, embreeTimes, scheduledTimes, compactedTimes, sortedTimes;
+        std::vector<double> gpuTimes, embreeTimes, scheduledTimes, compactedTimes, sortedTimes, wideTimes;
         std::uint64_t gpuRays = 0, touchingProbes = 0;
         RenderStats gpuStats;
         for (int r = 0; r <= runs; ++r) {
@@ -262,15 +281,18 @@ int run(int argc, char** argv) {
             const double scheduledTime = scheduled.trace(device);
             const double compactedTime = compacted.trace(device);
             const double sortedTime = sorted.trace(device);
+            const double wideTime = wide ? wide->trace(device) : 0.0;
             if (r == 0) {
                 checkTraceOnly(scheduled, scheduleOrder, bvh, triangles, rays, file);
                 checkTraceOnly(compacted, compactedOrder, bvh, triangles, rays, file);
                 checkTraceOnly(sorted, sortedOrder, bvh, triangles, rays, file);
+                if (wide) checkTraceOnly(*wide, scheduleOrder, bvh, triangles, rays, file);
                 continue;
             }
             scheduledTimes.push_back(scheduledTime);
             compactedTimes.push_back(compactedTime);
             sortedTimes.push_back(sortedTime);
+            wideTimes.push_back(wideTime);
             gpuTimes.push_back(stats.seconds("render"));
             embreeTimes.push_back(embreeTime);
             gpuRays = stats.rays.total();
@@ -296,8 +318,10 @@ int run(int argc, char** argv) {
         const double scheduledRate = double(rays.size()) / bench::median(scheduledTimes) * 1e-6;
         const double compactedRate = double(rays.size()) / bench::median(compactedTimes) * 1e-6;
         const double sortedRate = double(rays.size()) / bench::median(sortedTimes) * 1e-6;
+        const double wideRate = wide ? double(rays.size()) / bench::median(wideTimes) * 1e-6 : 0.0;
         std::cerr << "; traversal alone " << bench::fixed(scheduledRate, 2) << " (the kernel's schedule), "
-                  << bench::fixed(compactedRate, 2) << " (compacted), " << bench::fixed(sortedRate, 2) << " (sorted)\n";
+                  << bench::fixed(compactedRate, 2) << " (compacted), " << bench::fixed(sortedRate, 2) << " (sorted), "
+                  << bench::fixed(wideRate, 2) << " (one ray a subgroup)\n";
         auto traceOnlyColumns = [&](const std::vector<double>& times, double rate) {
             return " | " + bench::fixed(bench::median(times), 3) + " | " + bench::fixed(rate, 2) + " | " +
                    bench::fixed(rate / theirs, 3) + "x";
@@ -305,7 +329,10 @@ int run(int argc, char** argv) {
         traceOnlyRows += "| " + fs::path(file).stem().string() + " | " + bench::fixed(ratio, 3) + "x" +
                          traceOnlyColumns(scheduledTimes, scheduledRate) + " | " + std::to_string(passCount) +
                          traceOnlyColumns(compactedTimes, compactedRate) + traceOnlyColumns(sortedTimes, sortedRate) +
-                         " |\n";
+                         (wide ? traceOnlyColumns(wideTimes, wideRate) : std::string(" | - | - | -")) + " | " +
+                         bench::fixed(wideTree.meanChildren, 1) + " | " +
+                         bench::fixed(groupStepsPerRay(scheduled, scheduleOrder, lanes), 1) + " | " +
+                         (wide ? bench::fixed(groupStepsPerRay(*wide, scheduleOrder, lanes), 1) : std::string("-")) + " |\n";
 
         // How full vitrum's SIMD groups were, and how full other schedules of the same rays could be.
         const double measured = double(gpuStats.loopSteps + gpuStats.restartedSteps) /
@@ -373,9 +400,19 @@ int run(int argc, char** argv) {
                  "every 97th ray it finds what vitrum's CPU traversal finds (hit or miss, the same t), or the "
                  "benchmark stops. A wavefront renderer would add to this its shading passes, the rays' and hits' "
                  "trips through memory and a dispatch a pass.\n\n"
+                 "The last columns trace the kernel's schedule another way (bench/trace_only/trace_rays_wide.comp): "
+                 "*one ray a subgroup*, its lanes testing the children of one node of the tree collapsed into 8-wide "
+                 "nodes (bench/wide_bvh.h; the column before gives their mean children) or the triangles of one leaf, "
+                 "as a CPU tracer's SIMD lanes do for one ray, and the subgroup's rays one after another: no lane waits "
+                 "on a ray that went another way, however incoherent the rays. The iterations a ray are those of the "
+                 "SIMD groups over the rays they trace: the lanes' traversal shares each of its iterations among the "
+                 "group's rays, one ray a subgroup has a whole iteration for each visit (cross-lane operations are "
+                 "loops over the lanes on lavapipe: docs/gpu-design.md).\n\n"
                  "| scene | the whole kernel against Embree | the kernel's schedule s | Mrays/s | against Embree | "
-                 "passes | compacted s | Mrays/s | against Embree | sorted s | Mrays/s | against Embree |\n"
-                 "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n"
+                 "passes | compacted s | Mrays/s | against Embree | sorted s | Mrays/s | against Embree | "
+                 "one ray a subgroup s | Mrays/s | against Embree | children a wide node | group iterations a ray: "
+                 "the kernel's schedule | one ray a subgroup |\n"
+                 "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n"
               << traceOnlyRows;
     return 0;
 }
