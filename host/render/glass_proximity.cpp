@@ -121,8 +121,11 @@ CloseGlassTriangles findCloseGlassTriangles(const Scene& scene, double distance,
     }
     std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
     const glm::dvec3 extent = region.max - region.min;
-    const double cell =
+    double cell =
         std::max({2.0 * sizes[sizes.size() / 2], 4.0 * distance, std::max({extent.x, extent.y, extent.z}) / kCellsPerAxis});
+    // None of the three is positive only when every triangle is one and the same point and the
+    // distance is 0: one cell of any size holds them (a 0 would divide 0 by 0 below).
+    if (!(cell > 0.0)) cell = 1.0;
     constexpr std::uint64_t kMaxCells = 64;
 
     struct Entry {

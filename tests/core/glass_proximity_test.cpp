@@ -151,6 +151,28 @@ TEST(GlassProximity, NestedBoxesApartAreNotClose) {
     EXPECT_TRUE(findCloseGlassTriangles(scene, 0.15).found);
 }
 
+// Triangles shrunk to one point each (a fuzzed OBJ of "v 0 1 0" only): at distance 0 two of them
+// at the same place lie within it, and elsewhere they do not. The search's grid has no extent to
+// divide then: cells of size 0 made 0 / 0, a NaN turned into a cell index, which is undefined
+// behaviour that the release build happens to survive with the same answer, so it is this test
+// and the fuzz regression obj_mtl/glass_triangles_all_one_point under `make sanitize` (with
+// float-cast-overflow) that fail without the fix.
+TEST(GlassProximity, TrianglesThatArePointsAreCloseOnlyWhereTheyCoincide) {
+    for (const auto& [second, close] : {std::pair{glm::vec3(0, 1, 0), true}, std::pair{glm::vec3(0, 2, 0), false}}) {
+        Scene scene = glassScene();
+        for (const glm::vec3& point : {glm::vec3(0, 1, 0), second}) {
+            Triangle t;
+            t.position[0] = t.position[1] = t.position[2] = point;
+            t.object = std::uint32_t(scene.objectNames.size());
+            scene.objectNames.push_back("point");
+            scene.triangles.push_back(t);
+        }
+        const CloseGlassTriangles found = findCloseGlassTriangles(scene, 0.0);
+        EXPECT_EQ(found.found, close) << "second point at " << second.y;
+        EXPECT_EQ(found.examinedPairs, close ? 1u : 0u);
+    }
+}
+
 TEST(GlassProximity, ALargeFaceOverAFineSheetIsPairedWithEveryTriangle) {
     // The large quad covers far more grid cells than the sheet's small triangles: it is paired
     // with all of them rather than put in each cell.
