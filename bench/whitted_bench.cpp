@@ -402,7 +402,7 @@ int run(int argc, char** argv) {
                  "trips through memory and a dispatch a pass.\n\n"
                  "The last columns trace the kernel's schedule another way (bench/trace_only/trace_rays_wide.comp): "
                  "*one ray a subgroup*, its lanes testing the children of one node of the tree collapsed into 8-wide "
-                 "nodes (bench/wide_bvh.h; the column before gives their mean children) or the triangles of one leaf, "
+                 "nodes (bench/wide_bvh.h; *children a wide node* gives their mean) or the triangles of one leaf, "
                  "as a CPU tracer's SIMD lanes do for one ray, and the subgroup's rays one after another: no lane waits "
                  "on a ray that went another way, however incoherent the rays. The iterations a ray are those of the "
                  "SIMD groups over the rays they trace: the lanes' traversal shares each of its iterations among the "
