@@ -406,7 +406,17 @@ void leaveMedium(inout uvec4 media, inout uint count, uint object) {
     count -= 1u;
 }
 
+// Entering an object the ray is already inside keeps the stack, and is counted, as leaving one
+// it is not inside: a closed mesh cannot be entered twice (rounding at a grazing hit can make it
+// seem so), and the stack never holds an object twice, so the nesting bounds its depth.
 void enterMedium(inout uvec4 media, inout uint count, uint object) {
+    bool inside = (count > 0u && media[0] == object) || (kMediumStackDepth > 1u && count > 1u && media[1] == object) ||
+                  (kMediumStackDepth > 2u && count > 2u && media[2] == object) ||
+                  (kMediumStackDepth > 3u && count > 3u && media[3] == object);
+    if (inside) {
+        gInconsistentMedia += 1u;
+        return;
+    }
     if (count >= kMediumStackDepth) {
         gMediumStackOverflows += 1u;
         return;

@@ -332,8 +332,13 @@ private:
             if (it != inside.rend()) inside.erase(std::next(it).base());
             else counters.inconsistentMedia += 1;
         }
-        for (const Crossing& c : crossings)
-            if (c.entering) inside.push_back(c.object);
+        // Entering an object the ray is already inside (a closed mesh cannot be entered twice:
+        // rounding, or an open mesh) keeps the stack too, and is counted the same way.
+        for (const Crossing& c : crossings) {
+            if (!c.entering) continue;
+            if (std::find(inside.begin(), inside.end(), c.object) == inside.end()) inside.push_back(c.object);
+            else counters.inconsistentMedia += 1;
+        }
         const Real n1 = entering ? mediumIor(media) : Real(hit.material->ior);
         const Real n2 = entering && crossings.size() == 1 ? Real(hit.material->ior) : mediumIor(inside);
 

@@ -38,7 +38,7 @@ struct SceneFeatures {
     double touchingDistance = 0.0;
     // Glass objects that are not closed, consistently wound meshes (some edge is not shared by
     // exactly two triangles in opposite directions): rays can leave them without entering, or
-    // enter twice, so the medium stack can hold more than their nesting says.
+    // enter them and never leave, so the medium stack can hold more than their nesting says.
     std::uint32_t openGlassObjects = 0;
     // The most media a ray can be inside at once: 0 without glass; the GPU's whole stack
     // (gpu::kMaxMediumDepth) when some glass object is open; else 1 + the most other glass objects
