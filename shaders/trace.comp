@@ -390,12 +390,18 @@ PendingRay childRay(vec3 origin, vec3 direction, vec3 weight, uvec4 media, uint 
 // The medium stack, written without loops: every loop iteration counts against lavapipe's limit.
 // Removes the innermost entry of `object` (normally the top); a ray leaving an object it is not
 // inside (an open or badly wound mesh) keeps its stack, and that is counted.
-void leaveMedium(inout uvec4 media, inout uint count, uint object) {
+// The innermost place of `object` in the stack, or `count` where the ray is not inside it.
+uint innermostMedium(uvec4 media, uint count, uint object) {
     uint found = count;
     if (count > 0u && media[0] == object) found = 0u;
     if (kMediumStackDepth > 1u && count > 1u && media[1] == object) found = 1u;
     if (kMediumStackDepth > 2u && count > 2u && media[2] == object) found = 2u;
     if (kMediumStackDepth > 3u && count > 3u && media[3] == object) found = 3u;
+    return found;
+}
+
+void leaveMedium(inout uvec4 media, inout uint count, uint object) {
+    uint found = innermostMedium(media, count, object);
     if (found == count) {
         gInconsistentMedia += 1u;
         return;
@@ -407,13 +413,10 @@ void leaveMedium(inout uvec4 media, inout uint count, uint object) {
 }
 
 // Entering an object the ray is already inside keeps the stack, and is counted, as leaving one
-// it is not inside: a closed mesh cannot be entered twice (rounding at a grazing hit can make it
+// it is not inside: a closed mesh cannot be entered twice (where rounding lost a crossing it can
 // seem so), and the stack never holds an object twice, so the nesting bounds its depth.
 void enterMedium(inout uvec4 media, inout uint count, uint object) {
-    bool inside = (count > 0u && media[0] == object) || (kMediumStackDepth > 1u && count > 1u && media[1] == object) ||
-                  (kMediumStackDepth > 2u && count > 2u && media[2] == object) ||
-                  (kMediumStackDepth > 3u && count > 3u && media[3] == object);
-    if (inside) {
+    if (innermostMedium(media, count, object) != count) {
         gInconsistentMedia += 1u;
         return;
     }

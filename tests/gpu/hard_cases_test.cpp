@@ -941,9 +941,9 @@ TEST(HardCaseDeepTree, FiveNestedMediaOverflowTheGpuMediumStackAndSaySo) {
     // Five nested glass boxes of different IORs: a ray inside all five needs a medium stack of 5;
     // the GPU's holds 4 (kMaxMediumDepth), so it counts medium_stack_overflow (and, leaving the
     // fifth box it never recorded, inconsistent_media). The CPU's stack has no limit: it counts no
-    // overflow, renders the innermost box with its true IOR, and counts as inconsistent only the
-    // few rays that seem to enter a box they are already inside (rounding where a ray restarts off
-    // one face: both backends keep the stack then), far fewer than the GPU.
+    // overflow and renders the innermost box with its true IOR. Both count the deep rays that
+    // graze a box's edge, lose a crossing by rounding and later seem to enter a box they are
+    // inside (the same rule and arithmetic on both), so the GPU counts those and more.
     Scene scene = emptyScene(16, 12, 40.0f);
     scene.background.colour = vec3(0.9f, 0.8f, 0.3f);
     scene.settings.fresnel = FresnelModel::Exact;
@@ -959,7 +959,7 @@ TEST(HardCaseDeepTree, FiveNestedMediaOverflowTheGpuMediumStackAndSaySo) {
     EXPECT_GT(p.gpuStats.limits.mediumStackOverflow, 0u);
     EXPECT_EQ(p.gpuStats.maxMediumDepth, 4u);
     EXPECT_EQ(p.cpuStats.limits.mediumStackOverflow, 0u);
-    EXPECT_LT(p.cpuStats.limits.inconsistentMedia * 10, p.gpuStats.limits.inconsistentMedia);
+    EXPECT_GT(p.gpuStats.limits.inconsistentMedia, p.cpuStats.limits.inconsistentMedia);
 }
 
 // ---- Equal indices in an image -------------------------------------------------------------
