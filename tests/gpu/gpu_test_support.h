@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <string>
 
@@ -64,6 +65,32 @@ inline RenderPair renderBoth(const Scene& scene, const VulkanRenderOptions& gpuO
     result.cpu = renderReference(scene, bvh, ReferenceOptions{}, result.cpuStats);
     result.diff = diffImages(result.gpu, result.cpu);
     return result;
+}
+
+// The pixels of two images of one size that differ in any bit.
+inline std::size_t differingPixels(const Image& a, const Image& b) {
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i)
+        if (std::memcmp(&a.pixels[i], &b.pixels[i], sizeof(glm::vec3)) != 0) ++differing;
+    return differing;
+}
+
+// Two renders of the same rays (the specialized kernel and the general one, say) counted the same
+// work and met the same limits.
+inline void expectSameWork(const RenderStats& a, const RenderStats& b) {
+    EXPECT_EQ(a.rays.primary, b.rays.primary);
+    EXPECT_EQ(a.rays.shadow, b.rays.shadow);
+    EXPECT_EQ(a.rays.reflection, b.rays.reflection);
+    EXPECT_EQ(a.rays.refraction, b.rays.refraction);
+    EXPECT_EQ(a.limits.depthLimit, b.limits.depthLimit);
+    EXPECT_EQ(a.limits.rayStackOverflow, b.limits.rayStackOverflow);
+    EXPECT_EQ(a.limits.mediumStackOverflow, b.limits.mediumStackOverflow);
+    EXPECT_EQ(a.limits.inconsistentMedia, b.limits.inconsistentMedia);
+    EXPECT_EQ(a.limits.weightCuts, b.limits.weightCuts);
+    EXPECT_EQ(a.totalInternalReflections, b.totalInternalReflections);
+    EXPECT_EQ(a.touchingInterfaces, b.touchingInterfaces);
+    EXPECT_EQ(a.maxRayDepth, b.maxRayDepth);
+    EXPECT_EQ(a.maxMediumDepth, b.maxMediumDepth);
 }
 
 // Standard deviation of the luminance-ish channel mean: 0 for a constant image.

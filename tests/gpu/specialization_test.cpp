@@ -29,22 +29,6 @@ Image renderOnGpu(const Scene& scene, const Bvh& bvh, bool specialize, RenderSta
     return image;
 }
 
-void expectSameWork(const RenderStats& a, const RenderStats& b) {
-    EXPECT_EQ(a.rays.primary, b.rays.primary);
-    EXPECT_EQ(a.rays.shadow, b.rays.shadow);
-    EXPECT_EQ(a.rays.reflection, b.rays.reflection);
-    EXPECT_EQ(a.rays.refraction, b.rays.refraction);
-    EXPECT_EQ(a.limits.depthLimit, b.limits.depthLimit);
-    EXPECT_EQ(a.limits.rayStackOverflow, b.limits.rayStackOverflow);
-    EXPECT_EQ(a.limits.mediumStackOverflow, b.limits.mediumStackOverflow);
-    EXPECT_EQ(a.limits.inconsistentMedia, b.limits.inconsistentMedia);
-    EXPECT_EQ(a.limits.weightCuts, b.limits.weightCuts);
-    EXPECT_EQ(a.totalInternalReflections, b.totalInternalReflections);
-    EXPECT_EQ(a.touchingInterfaces, b.touchingInterfaces);
-    EXPECT_EQ(a.maxRayDepth, b.maxRayDepth);
-    EXPECT_EQ(a.maxMediumDepth, b.maxMediumDepth);
-}
-
 class Specialization : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Specialization, SpecializedAndGeneralKernelsGiveTheSameImage) {
@@ -59,10 +43,7 @@ TEST_P(Specialization, SpecializedAndGeneralKernelsGiveTheSameImage) {
     EXPECT_FALSE(general.kernel->specialized);
     EXPECT_TRUE(specialized.kernel->specialized);
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
-    std::size_t differing = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i)
-        if (std::memcmp(&a.pixels[i], &b.pixels[i], sizeof(glm::vec3)) != 0) ++differing;
-    EXPECT_EQ(differing, 0u) << "pixels that differ in any bit, of " << a.pixels.size();
+    EXPECT_EQ(differingPixels(a, b), 0u) << "pixels that differ in any bit, of " << a.pixels.size();
     EXPECT_GT(imageSpread(a), 0.0) << "a constant image would match anything";
     EXPECT_GT(general.rays.total(), 0u);
     expectSameWork(general, specialized);
