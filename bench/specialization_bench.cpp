@@ -143,7 +143,8 @@ int run(int argc, char** argv) {
                           (1024.0 * 1024.0), 1)
              << " | " << general.stats.touchingProbes - special.stats.touchingProbes << " | "
              << (k.shadowRays ? "" : "shadow rays, ") << (k.absorption ? "" : "absorption, ")
-             << (k.touchingProbe ? "" : "touching surfaces, ") << (k.textures ? "" : "textures, ")
+             << (k.touchingProbe ? "" : "touching surfaces, ") << (k.opaqueContact ? "" : "glass on opaque surfaces, ")
+             << (k.textures ? "" : "textures, ")
              << (k.materialModels >> 4 & 1u ? "" : "glass, ") << "other backgrounds |\n";
     }
     fs::remove_all(cacheRoot);

@@ -98,9 +98,18 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     vec2 barycentrics = st.hitUv.zw;
     uint top = st.control.w;
     bool collectTouching = kTouchingProbe && mode == kTraverseClosest && params.tuning.z != 0.0;
-    float reach = collectTouching ? params.tuning.y : 0.0;  // boxes and candidates: up to tMax + reach
+    // Glass resting on an opaque surface (render-model-decisions.md, "Glass on an opaque
+    // surface"): the nearest opaque triangle hit below the nearest hit so far plus e (ties: the
+    // lower index), which the CPU reference's probe beyond a glass hit finds too, and whether the
+    // nearest hit so far is glass. When the traversal is over and an opaque hit lies within e
+    // beyond a glass one, the opaque one is the hit. Kept in st.hitPosition and st.hitNormal.x,
+    // which only shading reads.
+    bool collectContact = kOpaqueContact && mode == kTraverseClosest && params.tuning.w != 0.0;
+    float reach = collectTouching || collectContact ? params.tuning.y : 0.0;  // boxes and candidates: up to tMax + reach
     uvec4 touchingObjects = st.touching;
     vec4 touchingT = st.probe;
+    vec4 contact = st.hitPosition;  // t, triangle (bits), barycentrics
+    bool closestGlass = st.hitNormal.x != 0.0;
     uint current = kNoEntry;  // the entry to visit next, taken off the stack or kept from a visit
     if (top == kFreshTraversal) {
         top = 0u;
@@ -167,15 +176,20 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
             TriangleVertices tri = loadTriangle(triangle);
             vec3 hit = intersectTriangle(tri, triangleRay);
             if (hit.x > tMin && hit.x < tMax + reach) {
-                if (collectTouching && floatBitsToUint(tri.v2.w) == kTriangleGlass) {
+                bool glass = floatBitsToUint(tri.v2.w) == kTriangleGlass;
+                if (collectTouching && glass) {
                     bool entering = dot(direction, cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz)) < 0.0;
                     addTouchingCandidate(touchingObjects, touchingT, floatBitsToUint(tri.v1.w), entering, hit.x,
                                          tMax + reach);
                 }
+                if (collectContact && !glass &&
+                    (hit.x < contact.x || (hit.x == contact.x && triangle < floatBitsToUint(contact.y))))
+                    contact = vec4(hit.x, uintBitsToFloat(triangle), hit.yz);
                 if (hit.x < tMax) {
                     tMax = hit.x;
                     closest = triangle;
                     barycentrics = hit.yz;
+                    closestGlass = glass;
                     if (kShadowRays && mode == kTraverseAny) {
                         over = true;
                         break;
@@ -194,6 +208,11 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     if (kResumable) gStack[min(top, kTraversalStackSize - 1u)] = current;
     if (!tracing) return true;
     if (!over && current != kNoEntry) top += 1u;
+    if (collectContact && over && closestGlass && contact.x < tMax + reach) {
+        tMax = contact.x;
+        closest = floatBitsToUint(contact.y);
+        barycentrics = contact.zw;
+    }
     st.traceDirection.w = tMax;
     st.traversal.xyz = uvec3(cursor, leafEnd, closest);
     st.hitUv.zw = barycentrics;
@@ -201,6 +220,10 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     if (collectTouching) {
         st.touching = touchingObjects;
         st.probe = touchingT;
+    }
+    if (collectContact) {
+        st.hitPosition = contact;
+        st.hitNormal.x = closestGlass ? 1.0 : 0.0;
     }
     return over;
 }

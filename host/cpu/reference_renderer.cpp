@@ -101,6 +101,7 @@ public:
           maxDepth_(scene.settings.maxDepth),
           touchTolerance_(Real(features.touchingDistance)),
           touchingPossible_(features.touchingMediaPossible),
+          opaqueContactPossible_(features.opaqueContactPossible),
           minWeight_(Real(scene.settings.minWeight)),
           offsetScale_(rayOffsetScale(scene.triangles)) {
         const Camera& c = scene.camera;
@@ -153,7 +154,9 @@ private:
                 TraceCounters& counters) const {
         Ray<Real> ray{origin, d, Real(0), std::numeric_limits<Real>::max()};
         counters.logRay(ray, false);
-        const auto found = traceClosest<Real>(bvh_.nodes, vertices_, ray, &counters.traversal);
+        auto found = traceClosest<Real>(bvh_.nodes, vertices_, ray, &counters.traversal);
+        if (found && opaqueContactPossible_ && isGlass(found->triangle))
+            if (const auto opaque = opaqueUnderGlass(ray, found->t, counters)) found = opaque;
         const Color mu = mediumAttenuation(media);
         if (!found) {
             // Constant colour or environment map (render model, "Background").
@@ -407,6 +410,26 @@ private:
         for (auto it = crossings.begin() + first; it != crossings.end(); ++it) farT = std::max(farT, it->t);
     }
 
+    bool isGlass(std::uint32_t triangle) const {
+        return scene_.materials[scene_.triangles[bvh_.triangleOrder[triangle]].material].model == MaterialModel::Glass;
+    }
+
+    // Glass resting on an opaque surface (render-model-decisions.md, "Glass on an opaque
+    // surface"): the nearest opaque triangle the ray hits within e beyond its glass hit at t
+    // (ties: the lower index), which is then the hit. Where the two coincide, as under a glass
+    // standing on a table, rounding alone would otherwise choose between them.
+    std::optional<TriangleHit<Real>> opaqueUnderGlass(const Ray<Real>& ray, Real t, TraceCounters& counters) const {
+        thread_local std::vector<TriangleHit<Real>> hits;
+        hits.clear();
+        const Ray<Real> probe{ray.origin, ray.direction, std::max(Real(0), t - touchTolerance_), t + touchTolerance_};
+        traceAll<Real>(bvh_.nodes, vertices_, probe, hits, &counters.traversal);
+        std::optional<TriangleHit<Real>> nearest;
+        for (const TriangleHit<Real>& h : hits)
+            if (!isGlass(h.triangle) && (!nearest || h.t < nearest->t || (h.t == nearest->t && h.triangle < nearest->triangle)))
+                nearest = h;
+        return nearest;
+    }
+
     // IOR of the medium a ray is in: the innermost object's, or the scene's air.
     Real mediumIor(const MediumStack& media) const {
         if (media.empty()) return Real(scene_.airIor);
@@ -428,6 +451,7 @@ private:
     std::uint32_t maxDepth_;
     Real touchTolerance_;    // surfaces closer than this along a ray touch
     bool touchingPossible_;  // glass surfaces of two objects close enough to touch (scene_features.h)
+    bool opaqueContactPossible_;  // glass close enough to an opaque surface to rest on it (scene_features.h)
     Real minWeight_;
     RayOffsetScale offsetScale_;  // Waechter and Binder's absolute offsets, scaled to the scene
     Vec3 cameraFrom_, cameraX_, cameraY_, cameraZ_;

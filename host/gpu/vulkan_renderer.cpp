@@ -141,6 +141,9 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     // scene has two glass objects; the specialized one has the analysis's answer compiled in
     // (boxes that overlap), so it skips probes that could find nothing.
     p.tuning.z = stats.features.glassObjects >= 2 ? 1.0f : 0.0f;
+    // Whether closest-hit traversals look for an opaque surface within that distance beyond a
+    // glass hit (glass resting on a table): the analysis's answer, in both kernels.
+    p.tuning.w = stats.features.opaqueContactPossible ? 1.0f : 0.0f;
     // Every primary ray's medium stack: the media around the camera, or where the camera lies on a
     // surface, those on the ray's side of it (render/camera_surface.h).
     const std::vector<std::uint32_t>& cameraMedia = stats.features.cameraMedia;

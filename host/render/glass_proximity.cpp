@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <tuple>
 #include <vector>
 
@@ -11,10 +12,10 @@
 namespace vitrum {
 namespace {
 
-struct GlassTriangle {
+struct NearTriangle {
     glm::dvec3 corner[3];
     DoubleBox bounds;
-    std::uint32_t object = 0;
+    std::uint32_t group = 0;
 };
 
 // [lo, hi] of the three corners' projections on `axis`.
@@ -24,31 +25,33 @@ void project(const glm::dvec3 p[3], const glm::dvec3& axis, double& lo, double& 
     hi = std::max({d0, d1, d2});
 }
 
-// The glass triangles that lie within `distance` of another glass object's box: no other
-// triangle can be that close to them.
-std::vector<GlassTriangle> trianglesNearOtherObjects(const Scene& scene, double distance) {
-    std::vector<GlassTriangle> glass;
-    std::map<std::uint32_t, DoubleBox> objectBoxes;
+// The triangles of a group that lie within `distance` of another group's box: no triangle of
+// another group can be that close to the others.
+template <class GroupOf>
+std::vector<NearTriangle> trianglesNearOtherGroups(const Scene& scene, double distance, GroupOf groupOf) {
+    std::vector<NearTriangle> grouped;
+    std::map<std::uint32_t, DoubleBox> groupBoxes;
     for (const Triangle& t : scene.triangles) {
-        if (scene.materials[t.material].model != MaterialModel::Glass) continue;
-        GlassTriangle g;
+        const std::optional<std::uint32_t> group = groupOf(t);
+        if (!group) continue;
+        NearTriangle g;
         for (int i = 0; i < 3; ++i) {
             g.corner[i] = glm::dvec3(t.position[i]);
             g.bounds.grow(g.corner[i]);
         }
-        g.object = t.object;
-        objectBoxes[t.object].grow(g.bounds.min);
-        objectBoxes[t.object].grow(g.bounds.max);
-        glass.push_back(g);
+        g.group = *group;
+        groupBoxes[g.group].grow(g.bounds.min);
+        groupBoxes[g.group].grow(g.bounds.max);
+        grouped.push_back(g);
     }
-    // Each object's neighbours: the other objects whose boxes come within the distance of its own.
+    // Each group's neighbours: the other groups whose boxes come within the distance of its own.
     std::map<std::uint32_t, std::vector<DoubleBox>> neighbours;
-    for (const auto& [object, box] : objectBoxes)
-        for (const auto& [other, otherBox] : objectBoxes)
-            if (other != object && box.within(otherBox, distance)) neighbours[object].push_back(otherBox);
-    std::vector<GlassTriangle> near;
-    for (const GlassTriangle& g : glass) {
-        const auto found = neighbours.find(g.object);
+    for (const auto& [group, box] : groupBoxes)
+        for (const auto& [other, otherBox] : groupBoxes)
+            if (other != group && box.within(otherBox, distance)) neighbours[group].push_back(otherBox);
+    std::vector<NearTriangle> near;
+    for (const NearTriangle& g : grouped) {
+        const auto found = neighbours.find(g.group);
         if (found == neighbours.end()) continue;
         if (std::any_of(found->second.begin(), found->second.end(),
                         [&](const DoubleBox& box) { return g.bounds.within(box, distance); }))
@@ -101,19 +104,24 @@ bool trianglesApart(const glm::dvec3 a[3], const glm::dvec3 b[3], double distanc
     return false;
 }
 
-CloseGlassTriangles findCloseGlassTriangles(const Scene& scene, double distance, std::uint64_t maxPairs) {
-    CloseGlassTriangles result;
-    const std::vector<GlassTriangle> near = trianglesNearOtherObjects(scene, distance);
+namespace {
+
+// Two triangles of different groups (groupOf: a group, or none for a triangle left out) within
+// `distance` of each other.
+template <class GroupOf>
+CloseTriangles findCloseTriangles(const Scene& scene, double distance, std::uint64_t maxPairs, GroupOf groupOf) {
+    CloseTriangles result;
+    const std::vector<NearTriangle> near = trianglesNearOtherGroups(scene, distance, groupOf);
     if (near.empty()) return result;
 
     // A uniform grid with cells about twice as large as a typical triangle (twice the median of
     // their largest box sides, at least 4 distances): each triangle, its box grown by the distance, goes
-    // into the cells it covers, and triangles of different objects in one cell are paired. A
+    // into the cells it covers, and triangles of different groups in one cell are paired. A
     // triangle that would cover more than kMaxCells cells (a large face beside a fine mesh) is
     // paired with every other instead.
     DoubleBox region;
     std::vector<double> sizes;
-    for (const GlassTriangle& g : near) {
+    for (const NearTriangle& g : near) {
         region.grow(g.bounds.min - distance);
         region.grow(g.bounds.max + distance);
         const glm::dvec3 side = g.bounds.max - g.bounds.min;
@@ -130,9 +138,9 @@ CloseGlassTriangles findCloseGlassTriangles(const Scene& scene, double distance,
 
     struct Entry {
         CellKey cell;
-        std::uint32_t object, triangle;
+        std::uint32_t group, triangle;
         bool operator<(const Entry& o) const {
-            return std::tie(cell, object, triangle) < std::tie(o.cell, o.object, o.triangle);
+            return std::tie(cell, group, triangle) < std::tie(o.cell, o.group, o.triangle);
         }
     };
     auto key = [](const glm::uvec3& c) { return CellKey(c.x) << 42 | CellKey(c.y) << 21 | CellKey(c.z); };
@@ -150,12 +158,12 @@ CloseGlassTriangles findCloseGlassTriangles(const Scene& scene, double distance,
         }
         for (std::uint32_t x = lo.x; x <= hi.x; ++x)
             for (std::uint32_t y = lo.y; y <= hi.y; ++y)
-                for (std::uint32_t z = lo.z; z <= hi.z; ++z) entries.push_back({key({x, y, z}), near[i].object, i});
+                for (std::uint32_t z = lo.z; z <= hi.z; ++z) entries.push_back({key({x, y, z}), near[i].group, i});
     }
 
     // Whether the pair may touch (or the work's bound is reached): boxes within `distance` and
     // no separating axis.
-    auto mayTouch = [&](const GlassTriangle& a, const GlassTriangle& b) {
+    auto mayTouch = [&](const NearTriangle& a, const NearTriangle& b) {
         if (++result.examinedPairs > maxPairs) return result.gaveUp = true;
         return a.bounds.within(b.bounds, distance) && !trianglesApart(a.corner, b.corner, distance);
     };
@@ -171,15 +179,15 @@ CloseGlassTriangles findCloseGlassTriangles(const Scene& scene, double distance,
     auto search = [&] {
         for (std::uint32_t i : large)
             for (std::uint32_t j = 0; j < near.size(); ++j)
-                if (near[i].object != near[j].object && mayTouch(near[i], near[j])) return true;
+                if (near[i].group != near[j].group && mayTouch(near[i], near[j])) return true;
         std::sort(entries.begin(), entries.end());
         for (std::size_t first = 0; first < entries.size();) {
             std::size_t end = first;
             while (end < entries.size() && entries[end].cell == entries[first].cell) ++end;
-            // The cell's entries come by object: each object's with those of the objects after it.
+            // The cell's entries come by group: each group's with those of the groups after it.
             for (std::size_t run = first; run < end;) {
                 std::size_t runEnd = run;
-                while (runEnd < end && entries[runEnd].object == entries[run].object) ++runEnd;
+                while (runEnd < end && entries[runEnd].group == entries[run].group) ++runEnd;
                 for (std::size_t i = run; i < runEnd; ++i)
                     for (std::size_t j = runEnd; j < end; ++j)
                         if (pairedHere(entries[i].cell, entries[i].triangle, entries[j].triangle) &&
@@ -193,6 +201,21 @@ CloseGlassTriangles findCloseGlassTriangles(const Scene& scene, double distance,
     };
     result.found = search();
     return result;
+}
+
+}  // namespace
+
+CloseTriangles findCloseGlassTriangles(const Scene& scene, double distance, std::uint64_t maxPairs) {
+    return findCloseTriangles(scene, distance, maxPairs, [&](const Triangle& t) -> std::optional<std::uint32_t> {
+        if (scene.materials[t.material].model != MaterialModel::Glass) return std::nullopt;
+        return t.object;
+    });
+}
+
+CloseTriangles findGlassNearOpaque(const Scene& scene, double distance, std::uint64_t maxPairs) {
+    return findCloseTriangles(scene, distance, maxPairs, [&](const Triangle& t) -> std::optional<std::uint32_t> {
+        return scene.materials[t.material].model == MaterialModel::Glass ? 0u : 1u;
+    });
 }
 
 }  // namespace vitrum

@@ -1,7 +1,8 @@
 // Whether surfaces of two glass objects come close enough to touch (docs/render-model-decisions.md,
-// "Touching objects"): only then does a render need the touching probe. Boxes around whole
-// objects cannot tell a bubble inside a block (nested, never touching) from two blocks face to
-// face; the triangles can.
+// "Touching objects"), or glass comes close enough to an opaque surface to rest on it ("Glass on
+// an opaque surface"): only then does a render need to look for them. Boxes around whole objects
+// cannot tell a bubble inside a block (nested, never touching) from two blocks face to face; the
+// triangles can.
 #pragma once
 
 #include <cstdint>
@@ -11,7 +12,7 @@
 namespace vitrum {
 
 // What findCloseGlassTriangles found: a pair of triangles within the distance asked.
-struct CloseGlassTriangles {
+struct CloseTriangles {
     bool found = false;
     // The pairs of triangles looked at (sharing a cell of the search's grid), and whether the
     // search stopped at kMaxExaminedPairs, which also counts as found.
@@ -27,8 +28,12 @@ constexpr std::uint64_t kMaxExaminedPairs = 20'000'000;
 // each other. Sound: when nothing is found, every two such triangles are farther apart than
 // `distance`. Complete up to rounding and to kMaxExaminedPairs: a pair farther apart is found
 // only when the search gives up.
-CloseGlassTriangles findCloseGlassTriangles(const Scene& scene, double distance,
-                                            std::uint64_t maxPairs = kMaxExaminedPairs);
+CloseTriangles findCloseGlassTriangles(const Scene& scene, double distance,
+                                       std::uint64_t maxPairs = kMaxExaminedPairs);
+
+// Looks for a glass triangle and an opaque one (of any objects, one and the same included) that
+// lie within `distance` of each other; sound and complete as findCloseGlassTriangles.
+CloseTriangles findGlassNearOpaque(const Scene& scene, double distance, std::uint64_t maxPairs = kMaxExaminedPairs);
 
 // Whether triangles a and b are farther apart than `distance`, by the separating-axis test:
 // some axis along which their projections leave a gap wider than `distance`, among axes that

@@ -129,6 +129,7 @@ SceneFeatures analyseScene(const Scene& scene) {
     // Overlapping boxes say that two objects may touch or one lie in the other; only the
     // triangles tell which (a bubble in a block is nested, never touching).
     f.touchingMediaPossible = mostOverlaps > 0 && findCloseGlassTriangles(scene, margin).found;
+    f.opaqueContactPossible = f.glass && findGlassNearOpaque(scene, margin).found;
     const std::set<std::uint32_t> open = openGlassObjects(scene);
     f.openGlassObjects = std::uint32_t(open.size());
     // A primary ray's media are those where it starts: off the camera's surface on its side.
@@ -173,6 +174,7 @@ std::vector<std::string> SceneFeatures::describe() const {
             " objects" + (openGlassObjects ? ", " + std::to_string(openGlassObjects) + " of them open or badly wound" : ""),
         std::string("absorbing media (Beer-Lambert): ") + yesNo(absorbingMedia),
         std::string("touching glass surfaces possible: ") + yesNo(touchingMediaPossible),
+        std::string("glass resting on opaque surfaces possible: ") + yesNo(opaqueContactPossible),
         "medium stack depth needed: " + std::to_string(mediumStackDepth),
         std::string("reflected rays: ") + yesNo(reflection),
         "pending-ray stack needed: " + std::to_string(rayStackDepth),
@@ -191,6 +193,7 @@ nlohmann::json toJson(const SceneFeatures& f) {
         {"open_glass_objects", f.openGlassObjects},
         {"absorbing_media", f.absorbingMedia},
         {"touching_media_possible", f.touchingMediaPossible},
+        {"opaque_contact_possible", f.opaqueContactPossible},
         {"medium_stack_depth", f.mediumStackDepth},
         {"camera_media", f.cameraMedia},
         {"camera_surface_triangles", f.cameraSurface.triangles},

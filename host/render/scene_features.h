@@ -28,6 +28,11 @@ struct SceneFeatures {
     // of each other (render/glass_proximity.h): only then can a touching probe find anything, so
     // otherwise neither backend probes. Nested objects apart from each other need no probe.
     bool touchingMediaPossible = false;
+    // A glass triangle that may lie within twice the touching distance of an opaque one (any
+    // objects): only then can an opaque surface lie within the touching distance of a glass hit,
+    // where both backends take the opaque one (glass resting on a table; render-model-decisions.md,
+    // "Glass on an opaque surface"), so otherwise neither looks for it.
+    bool opaqueContactPossible = false;
     bool reflection = false;             // opaque dielectrics, mirrors or glass spawn reflected rays
     bool shadowRays = false;             // lights and materials that use them (Lambert, Phong)
     bool textures = false;               // some material samples map_Kd

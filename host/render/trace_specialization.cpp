@@ -23,6 +23,7 @@ TraceSpecialization TraceSpecialization::forScene(const Scene& scene, const Scen
     s.shadowRays = f.shadowRays;
     s.absorption = f.absorbingMedia;
     s.touchingProbe = f.touchingMediaPossible;
+    s.opaqueContact = f.opaqueContactPossible;
     s.textures = f.textures;
     s.backgroundKind = std::uint32_t(f.background);
     s.fresnelModel = std::uint32_t(scene.settings.fresnel);
@@ -46,7 +47,8 @@ std::array<std::uint32_t, TraceSpecialization::kConstantCount> TraceSpecializati
             textureFilter,
             mediumStackDepth,
             pendingRayCapacity,
-            singleSample ? 1u : 0u};
+            singleSample ? 1u : 0u,
+            opaqueContact ? 1u : 0u};
 }
 
 namespace {
@@ -74,6 +76,7 @@ std::vector<std::string> TraceSpecialization::describe() const {
         std::string("shadow rays: ") + onOff(shadowRays),
         std::string("Beer-Lambert absorption: ") + onOff(absorption),
         std::string("touching probe: ") + onOff(touchingProbe),
+        std::string("glass on opaque surfaces: ") + onOff(opaqueContact),
         std::string("textures: ") + onOff(textures),
         "background: " + kindName(backgroundKind, backgroundKindName),
         "fresnel: " + kindName(fresnelModel, fresnelModelName),
@@ -91,6 +94,7 @@ nlohmann::json toJson(const TraceSpecialization& s) {
         {"shadow_rays", s.shadowRays},
         {"absorption", s.absorption},
         {"touching_probe", s.touchingProbe},
+        {"opaque_contact", s.opaqueContact},
         {"textures", s.textures},
         {"background", kindName(s.backgroundKind, backgroundKindName)},
         {"fresnel", kindName(s.fresnelModel, fresnelModelName)},

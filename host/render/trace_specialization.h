@@ -26,6 +26,7 @@ struct TraceSpecialization {
     bool shadowRays = true;
     bool absorption = true;
     bool touchingProbe = true;
+    bool opaqueContact = true;  // glass may rest on an opaque surface (SceneFeatures::opaqueContactPossible)
     bool textures = true;
     std::uint32_t backgroundKind = kAnyKind;  // BackgroundKind or kAnyKind
     std::uint32_t fresnelModel = kAnyKind;    // FresnelModel or kAnyKind
@@ -38,7 +39,7 @@ struct TraceSpecialization {
     static TraceSpecialization forScene(const Scene& scene, const SceneFeatures& features);
 
     // The constants in constant_id order, as VkSpecializationInfo reads them.
-    static constexpr std::size_t kConstantCount = 11;
+    static constexpr std::size_t kConstantCount = 12;
     std::array<std::uint32_t, kConstantCount> constants() const;
     std::vector<std::string> describe() const;  // one line a setting, for `vitrum info`
 };

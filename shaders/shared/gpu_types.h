@@ -143,7 +143,8 @@ struct RenderParams {
                        // sample grid (rows = spp / columns); z = media of cameraMediaBehind
     vec4 tuning;       // x = min weight, y = distance within which surfaces touch (1e-5 x scene
                        // diagonal), z = 1 when the scene has two or more glass objects (so
-                       // surfaces of different objects can touch), else 0
+                       // surfaces of different objects can touch), else 0; w = 1 when glass may
+                       // rest on an opaque surface (SceneFeatures::opaqueContactPossible), else 0
     uvec4 environment; // x = background kind (kBackground*), y = filter (kFilter*), z = texture of
                        // the spherical map or of the cube's +x face (then -x, +y, -y, +z, -z)
     vec4 offsets;      // ray-origin offsets (Waechter and Binder) scaled to the scene: x = radius of
@@ -189,8 +190,11 @@ struct TraceState {
     PendingRay ray;                      // the ray being traced (or shaded)
     vec4 traceOrigin;                    // the ray of the current traversal; .w = tMin
     vec4 traceDirection;                 // .w = closest t so far (the traversal's tMax)
-    vec4 hitPosition;                    // .w = hit t of `ray`
-    vec4 hitNormal;                      // shading normal, .w = material (uint bits)
+    vec4 hitPosition;                    // .w = hit t of `ray`. During a closest-hit traversal
+                                         // that looks for glass on opaque surfaces: the nearest
+                                         // opaque hit's t, triangle (bits) and barycentrics
+    vec4 hitNormal;                      // shading normal, .w = material (uint bits). During such
+                                         // a traversal: .x = 1 when the nearest hit is glass
     vec4 hitGeometricNormal;             // .w = object (uint bits)
     vec4 hitUv;                          // .xy = texture coordinates, .zw = barycentrics
     uvec4 colourLow;                     // the pixel's colour so far, summed over its samples in

@@ -136,7 +136,7 @@ TEST(GlassProximity, BoxesAreCloseExactlyWhenTheirGapIsWithinTheDistance) {
         Scene scene = glassScene();
         addGlassBox(scene, {0, 0, 0}, {2, 2, 2});
         addGlassBox(scene, {2 + gap, 0.5f, 0.5f}, {4, 1.5f, 1.5f});
-        const CloseGlassTriangles found = findCloseGlassTriangles(scene, 2e-3);
+        const CloseTriangles found = findCloseGlassTriangles(scene, 2e-3);
         EXPECT_EQ(found.found, close) << "gap " << gap;
         EXPECT_FALSE(found.gaveUp);
     }
@@ -167,7 +167,7 @@ TEST(GlassProximity, TrianglesThatArePointsAreCloseOnlyWhereTheyCoincide) {
             scene.objectNames.push_back("point");
             scene.triangles.push_back(t);
         }
-        const CloseGlassTriangles found = findCloseGlassTriangles(scene, 0.0);
+        const CloseTriangles found = findCloseGlassTriangles(scene, 0.0);
         EXPECT_EQ(found.found, close) << "second point at " << second.y;
         EXPECT_EQ(found.examinedPairs, close ? 1u : 0u);
     }
@@ -193,11 +193,11 @@ TEST(GlassProximity, GivesUpAsCloseBeyondItsBoundOnPairs) {
     const float c = std::sqrt(0.5f);
     for (Triangle& t : scene.triangles)
         for (glm::vec3& p : t.position) p = glm::vec3(c * p.x + c * p.z, p.y, -c * p.x + c * p.z);
-    const CloseGlassTriangles full = findCloseGlassTriangles(scene, 0.02);
+    const CloseTriangles full = findCloseGlassTriangles(scene, 0.02);
     EXPECT_FALSE(full.found);
     EXPECT_GT(full.examinedPairs, 100u);
     EXPECT_TRUE(findCloseGlassTriangles(scene, 0.04).found);
-    const CloseGlassTriangles bounded = findCloseGlassTriangles(scene, 0.02, 100);
+    const CloseTriangles bounded = findCloseGlassTriangles(scene, 0.02, 100);
     EXPECT_TRUE(bounded.found);
     EXPECT_TRUE(bounded.gaveUp);
 }

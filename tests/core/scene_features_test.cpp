@@ -58,6 +58,32 @@ TEST(SceneFeatures, TouchingAndNestedGlassNeedsTheProbeAndADeeperStack) {
     EXPECT_EQ(featuresOf("scenes/glass_sphere_spherical.json").background, BackgroundKind::Spherical);
 }
 
+TEST(SceneFeatures, GlassRestingOnAnOpaqueSurfaceNeedsTheContactCheck) {
+    // A glass box on an opaque slab: standing on it, or a gap far below the touching distance
+    // (1e-5 of the diagonal, here ~9e-5; the analysis looks twice as far), calls for the check;
+    // a gap of 1e-3 does not, nor do opaque surfaces touching each other or glass alone.
+    for (const auto& [gap, contact] : {std::pair{0.0f, true}, std::pair{1e-6f, true}, std::pair{1e-3f, false}}) {
+        Scene scene = glassScene();
+        addGlassBox(scene, {0, 0, gap}, {2, 2, 2});
+        Material lambert;
+        lambert.model = MaterialModel::Lambert;
+        scene.materials.push_back(lambert);
+        const std::size_t first = scene.triangles.size();
+        addGlassBox(scene, {-3, -3, -1}, {3, 3, 0});
+        for (std::size_t i = first; i < scene.triangles.size(); ++i) scene.triangles[i].material = 1;
+        EXPECT_EQ(analyseScene(scene).opaqueContactPossible, contact) << "gap " << gap;
+        EXPECT_FALSE(analyseScene(scene).touchingMediaPossible) << "gap " << gap;  // one glass object
+        // The same slab in glass: two glass objects touch, and nothing is opaque.
+        for (std::size_t i = first; i < scene.triangles.size(); ++i) scene.triangles[i].material = 0;
+        EXPECT_FALSE(analyseScene(scene).opaqueContactPossible) << "gap " << gap;
+        EXPECT_EQ(analyseScene(scene).touchingMediaPossible, contact) << "gap " << gap;
+    }
+    // The project's scenes: water_glass's glass stands 0.01 above its floor; the demo's glass
+    // touches its floor.
+    EXPECT_FALSE(featuresOf("scenes/water_glass.json").opaqueContactPossible);
+    EXPECT_TRUE(featuresOf("scenes/demo.json").opaqueContactPossible);
+}
+
 TEST(SceneFeatures, MediumStackDepthCountsOverlappingBoxes) {
     Scene apart = glassScene();
     for (int i = 0; i < 5; ++i) addGlassBox(apart, {3.0f * i, 0, 0}, {3.0f * i + 2, 2, 2});  // gaps of 1
@@ -150,6 +176,7 @@ TEST(TraceSpecialization, LambertSceneGetsAKernelWithoutGlassOrStacks) {
     EXPECT_EQ(c[3], 0u);  // touching probe
     EXPECT_EQ(c[8], 1u);  // medium stack depth
     EXPECT_EQ(c[9], 0u);  // pending rays
+    EXPECT_EQ(c[11], 0u);  // glass on opaque surfaces
 }
 
 }  // namespace
