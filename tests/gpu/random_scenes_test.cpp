@@ -96,6 +96,13 @@ public:
         }
         scene.camera.at = vec3(uniform(-1, 1), uniform(-1, 1), uniform(-1, 0.5f));
         const float scale = pick({1.0f, 1.0f, 1e-3f, 1e3f});
+        // Light that falls off with the square of the distance is not the same image at another
+        // scale (1e-3 makes it 1e6 times brighter, beyond what absolute thresholds can judge), and
+        // its ambient term does not fall off: a scaled scene's lights do not fall off.
+        for (PointLight& light : scene.lights) {
+            light.inverseSquare = light.inverseSquare && scale == 1.0f;
+            drawn_ += light.inverseSquare ? ", an inverse-square light" : ", a light";
+        }
         // Drawn last, so that the scenes of earlier seeds stay as they were where these do not
         // apply: a copy of an object in the same place (its triangles coincide with the
         // object's), and the scene moved far from the origin, where the ray offsets are 32 ulps

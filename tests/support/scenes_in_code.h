@@ -72,16 +72,13 @@ inline void addBox(Scene& scene, glm::vec3 lo, glm::vec3 hi, std::uint32_t mater
 }
 
 // Every position of the scene (triangles, camera, lights) times `scale` plus `shift`; absorption
-// scaled by 1 / scale and inverse-square lights by scale^2, so that the image stays the same.
+// scaled by 1 / scale so that the image stays the same.
 inline Scene transformed(Scene scene, float scale, glm::vec3 shift = glm::vec3(0.0f)) {
     for (Triangle& t : scene.triangles)
         for (glm::vec3& p : t.position) p = p * scale + shift;
     scene.camera.from = scene.camera.from * scale + shift;
     scene.camera.at = scene.camera.at * scale + shift;
-    for (PointLight& l : scene.lights) {
-        l.position = l.position * scale + shift;
-        if (l.inverseSquare) l.colour *= scale * scale;
-    }
+    for (PointLight& l : scene.lights) l.position = l.position * scale + shift;
     for (Material& m : scene.materials) m.attenuation /= scale;
     return scene;
 }
