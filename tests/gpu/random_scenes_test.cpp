@@ -276,32 +276,34 @@ VulkanRenderOptions optionsFor(std::uint32_t seed) {
     return {.iterationBudget = seed % 3 == 0 ? 300u : 49152u, .tileSize = seed % 2 == 0 ? 16u : 256u};
 }
 
-TEST(RandomScenes, GpuMatchesTheCpuReferenceOnEveryScene) {
+// Runs check(seed, scene) on the scene of every seed, a failure naming the seed and what it drew.
+template <class Check>
+void forEachRandomScene(Check check) {
     for (std::uint32_t seed = 1; seed <= lastSeed(); ++seed) {
         SCOPED_TRACE("seed " + std::to_string(seed));
         RandomScene random(seed);
         const Scene scene = random.make();
         SCOPED_TRACE(random.drawn());
-        const RenderPair p = renderBoth(scene, optionsFor(seed));
-        EXPECT_TRUE(allFinite(p.gpu));
-        EXPECT_TRUE(allFinite(p.cpu));
-        // The thresholds of every GPU-against-CPU test (gpu_test_support.h): isolated pixels where a
-        // ray passes within an ulp of an edge may differ, nothing more.
-        EXPECT_LE(p.diff.shareOver005, 0.005);
-        EXPECT_LE(p.diff.meanAbsError, 2e-3);
-        EXPECT_EQ(p.gpuStats.rays.primary, p.cpuStats.rays.primary);
+        check(seed, scene);
     }
+}
+
+TEST(RandomScenes, GpuMatchesTheCpuReferenceOnEveryScene) {
+    forEachRandomScene([](std::uint32_t seed, const Scene& scene) {
+        const RenderPair p = renderBoth(scene, optionsFor(seed));
+        // The thresholds of every GPU-against-CPU test (gpu_test_support.h): isolated pixels where
+        // a ray passes within an ulp of an edge may differ, nothing more. Not its check that the
+        // image varies: a camera inside a mirror box at depth 1 rightly sees black.
+        expectImagesAgree(p);
+        EXPECT_EQ(p.gpuStats.rays.primary, p.cpuStats.rays.primary);
+    });
 }
 
 TEST(RandomScenes, SpecializedKernelMatchesTheGeneralOneBitForBit) {
     // The specialized kernel leaves out code the scene cannot reach and sizes its stacks to what
     // it can (trace_specialization.h): the same arithmetic on the same rays, so the same image in
     // every bit and the same counts, wherever the scene's features were judged right.
-    for (std::uint32_t seed = 1; seed <= lastSeed(); ++seed) {
-        SCOPED_TRACE("seed " + std::to_string(seed));
-        RandomScene random(seed);
-        const Scene scene = random.make();
-        SCOPED_TRACE(random.drawn());
+    forEachRandomScene([](std::uint32_t seed, const Scene& scene) {
         const Bvh bvh = buildBvh(scene.triangles);
         RenderStats specializedStats, generalStats;
         VulkanRenderOptions options = optionsFor(seed);
@@ -314,7 +316,7 @@ TEST(RandomScenes, SpecializedKernelMatchesTheGeneralOneBitForBit) {
         EXPECT_TRUE(specializedStats.kernel->specialized);
         EXPECT_EQ(differingPixels(specialized, general), 0u) << "pixels that differ in any bit";
         expectSameWork(specializedStats, generalStats);
-    }
+    });
 }
 
 }  // namespace
