@@ -3,8 +3,11 @@
 // (VITRUM_VALIDATION=1 from tests/CMakeLists.txt); any validation message fails the test.
 #pragma once
 
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <functional>
 #include <string>
 
@@ -16,6 +19,7 @@
 #include "gpu/test_kernels.h"
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
+#include "image/image.h"
 #include "image/image_diff.h"
 #include "render/render_stats.h"
 #include "scene/scene_loader.h"
@@ -124,6 +128,18 @@ inline void expectImagesAgree(const RenderPair& r, double maxShareOver005 = 0.00
     EXPECT_TRUE(allFinite(r.cpu)) << "CPU image has NaN, Inf or negative pixels";
     EXPECT_LE(r.diff.shareOver005, maxShareOver005) << "rmse " << r.diff.rmse << " psnr " << r.diff.psnr;
     EXPECT_LE(r.diff.meanAbsError, maxMeanError) << "rmse " << r.diff.rmse << " psnr " << r.diff.psnr;
+    // VITRUM_FAILED_IMAGES=DIR keeps both images of a failing test there, for `vitrum diff`
+    // (a failure on another machine's device is otherwise hard to see).
+    const char* dir = std::getenv("VITRUM_FAILED_IMAGES");
+    if (dir && ::testing::Test::HasFailure()) {
+        static int kept = 0;
+        const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+        std::string stem = std::string(test->test_suite_name()) + "." + test->name() + "." + std::to_string(kept++);
+        for (char& c : stem) c = std::isalnum(static_cast<unsigned char>(c)) || c == '.' ? c : '_';
+        std::filesystem::create_directories(dir);
+        writeImage(r.gpu, std::filesystem::path(dir) / (stem + ".gpu.pfm"));
+        writeImage(r.cpu, std::filesystem::path(dir) / (stem + ".cpu.pfm"));
+    }
 }
 
 inline void expectImagesMatch(const RenderPair& r, double maxShareOver005 = 0.005, double maxMeanError = 2e-3) {

@@ -920,7 +920,7 @@ TEST(HardCaseDegenerate, VertexNormalsWithNoDirectionShadeWithTheGeometricNormal
         RenderPair p = renderBoth(scene);
         for (const auto& [image, backend] : {std::pair{&p.gpu, "gpu"}, std::pair{&p.cpu, "cpu"}})
             for (const vec3& c : image->pixels)
-                ASSERT_LE(glm::length(glm::dvec3(c) - glm::dvec3(0.5, 0.0, 0.5)), 1e-6) << backend << " normals " << bad.y;
+                ASSERT_LE(glm::length(glm::dvec3(c) - glm::dvec3(0.5, 0.0, 0.5)), 1e-6) << backend << " normals " << bad.y << ": pixel " << c.x << ", " << c.y << ", " << c.z;
     }
 }
 
