@@ -162,6 +162,8 @@ int devicesCommand(int argc, char** argv, int first) {
                     statisticsSumsName(statisticsSumsFor(s, StatisticsSums::shuffles)));
         std::printf("   storage buffers up to %llu MiB, texel buffers up to %u texels\n",
                     static_cast<unsigned long long>(d.maxStorageBufferRange >> 20), d.maxTexelBufferElements);
+        // Without it the driver may assume no value is infinite or NaN (gpu/spirv_float_semantics.h).
+        std::printf("   infinities and NaNs in kernels: %s\n", d.preservesInfNan ? "kept (IEEE)" : "the driver's choice");
     }
     return 0;
 }

@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "gpu/spirv_float_semantics.h"
 #include "gpu/vulkan_error.h"
 
 namespace vitrum {
@@ -37,10 +38,12 @@ ComputePipeline::ComputePipeline(const VulkanDevice& device, std::span<const std
     VK_CHECK(vkCreatePipelineLayout(device_, &layoutInfo, nullptr, &pipelineLayout));
     pipelineLayout_ = UniquePipelineLayout(device_, pipelineLayout);
 
+    // Every kernel computes as the CPU reference does, so far as the device allows.
+    const std::vector<std::uint32_t> code = withCpuFloatSemantics(spirv, {.preserveInfNan = device.preservesInfNan()});
     VkShaderModuleCreateInfo moduleInfo{
         .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-        .codeSize = spirv.size_bytes(),
-        .pCode = spirv.data(),
+        .codeSize = code.size() * sizeof(std::uint32_t),
+        .pCode = code.data(),
     };
     VkShaderModule module = VK_NULL_HANDLE;
     VK_CHECK(vkCreateShaderModule(device_, &moduleInfo, nullptr, &module));

@@ -128,6 +128,13 @@ bool canRequireFullSubgroups(VkPhysicalDevice device, std::uint32_t& maxSubgroup
     return features.subgroupSizeControl && features.computeFullSubgroups && maxSubgroupSize > 0;
 }
 
+bool keepsInfNan(VkPhysicalDevice device) {
+    VkPhysicalDeviceFloatControlsProperties controls{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FLOAT_CONTROLS_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &controls};
+    vkGetPhysicalDeviceProperties2(device, &properties2);
+    return controls.shaderSignedZeroInfNanPreserveFloat32;
+}
+
 SubgroupSupport subgroupSupportOf(VkPhysicalDevice device) {
     VkPhysicalDeviceSubgroupProperties subgroup{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
     VkPhysicalDeviceProperties2 properties2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &subgroup};
@@ -154,8 +161,10 @@ std::vector<DeviceDescription> VulkanDevice::listDevices() {
             vkGetPhysicalDeviceProperties(devices[i], &p);
             // Subgroup properties are Vulkan 1.1; vitrum refuses devices below 1.2 anyway.
             const SubgroupSupport subgroups = p.apiVersion >= VK_API_VERSION_1_1 ? subgroupSupportOf(devices[i]) : SubgroupSupport{};
+            // Float controls are Vulkan 1.2, which vitrum needs.
+            const bool infNan = p.apiVersion >= VK_API_VERSION_1_2 && keepsInfNan(devices[i]);
             result.push_back({i, p.deviceName, deviceTypeName(p.deviceType), p.apiVersion, subgroups,
-                              p.limits.maxStorageBufferRange, p.limits.maxTexelBufferElements});
+                              p.limits.maxStorageBufferRange, p.limits.maxTexelBufferElements, infNan});
         }
     } catch (...) {
         vkDestroyInstance(instance, nullptr);
@@ -193,6 +202,7 @@ VulkanDevice::VulkanDevice(const std::string& selector) {
             throw InputError(std::string("Vulkan device ") + properties_.deviceName + " supports only Vulkan " +
                              std::to_string(VK_API_VERSION_MAJOR(properties_.apiVersion)) + "." +
                              std::to_string(VK_API_VERSION_MINOR(properties_.apiVersion)) + "; vitrum needs 1.2");
+        preservesInfNan_ = keepsInfNan(physicalDevice_);
 
         // The scene's buffers are read as storage texel buffers of R32G32B32A32_UINT texels
         // (shaders/bindings.glsl), which Vulkan requires every device to support.

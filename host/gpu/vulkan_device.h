@@ -35,6 +35,9 @@ struct DeviceDescription {
     SubgroupSupport subgroups;
     std::uint64_t maxStorageBufferRange = 0;  // bytes a storage buffer binding may span
     std::uint32_t maxTexelBufferElements = 0;
+    // Kernels may keep IEEE infinities, NaNs and signed zeros (VkPhysicalDeviceFloatControlsProperties::
+    // shaderSignedZeroInfNanPreserveFloat32); vitrum asks for it wherever it can (gpu/spirv_float_semantics.h).
+    bool preservesInfNan = false;
 };
 
 class VulkanDevice {
@@ -61,6 +64,8 @@ public:
     bool hasSubgroupArithmeticAndBallot() const { return subgroups_.arithmeticAndBallot; }
     bool hasFullSubgroups() const { return subgroups_.fullSubgroups; }
     std::uint32_t maxSubgroupSize() const { return subgroups_.maxSize; }
+    // DeviceDescription::preservesInfNan.
+    bool preservesInfNan() const { return preservesInfNan_; }
     // Messages the validation layer sent so far (0 when validation is off).
     std::uint32_t validationMessages() const;
 
@@ -81,6 +86,7 @@ private:
 
     VkInstance instance_ = VK_NULL_HANDLE;
     SubgroupSupport subgroups_;
+    bool preservesInfNan_ = false;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties properties_{};
