@@ -7,6 +7,7 @@
 const uint kNoTriangle = 0xFFFFFFFFu;
 
 #include "lanes.glsl"
+#include "ieee_vector_math.glsl"
 #include "ray_box.glsl"
 #include "triangle_test.glsl"
 #include "touching.glsl"
@@ -178,7 +179,8 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
             if (hit.x > tMin && hit.x < tMax + reach) {
                 bool glass = floatBitsToUint(tri.v2.w) == kTriangleGlass;
                 if (collectTouching && glass) {
-                    bool entering = dot(direction, cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz)) < 0.0;
+                    vec3 edgeCross = ieeeCross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz);
+                    bool entering = ieeeDot(direction, edgeCross) < 0.0;
                     addTouchingCandidate(touchingObjects, touchingT, floatBitsToUint(tri.v1.w), entering, hit.x,
                                          tMax + reach);
                 }

@@ -3,6 +3,8 @@
 #ifndef VITRUM_CAMERA_GLSL
 #define VITRUM_CAMERA_GLSL
 
+#include "ieee_vector_math.glsl"
+
 // Position of sample k of n inside its pixel, in [0, 1)^2: the pixel centre for one sample,
 // otherwise a jittered point in cell (k % columns, k / columns) of a columns x (n / columns) grid.
 vec2 sampleOffsetInPixel(uint pixelIndex, uint k, uint n, uint columns) {
@@ -19,7 +21,7 @@ vec3 cameraRayDirection(vec2 imagePosition) {
     float halfHeight = 0.5 * float(params.image.y);
     vec3 d = (imagePosition.x - halfWidth) * params.cameraX.xyz + (halfHeight - imagePosition.y) * params.cameraY.xyz -
              params.cameraFrom.w * params.cameraZ.xyz;
-    return normalize(d);
+    return ieeeNormalize(d);
 }
 
 #endif

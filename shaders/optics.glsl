@@ -6,12 +6,14 @@
 #ifndef VITRUM_OPTICS_GLSL
 #define VITRUM_OPTICS_GLSL
 
+#include "ieee_vector_math.glsl"
+
 // r = d - 2 (d.n) n  (lecture: law of reflection)
-vec3 reflectDirection(vec3 d, vec3 n) { return d - 2.0 * dot(d, n) * n; }
+vec3 reflectDirection(vec3 d, vec3 n) { return d - 2.0 * ieeeDot(d, n) * n; }
 
 // 1 - eta^2 (1 - (d.n)^2) = cos^2(theta_2); negative means total internal reflection.
 float cosSquaredTransmitted(vec3 d, vec3 n, float eta) {
-    float dn = dot(d, n);
+    float dn = ieeeDot(d, n);
     return 1.0 - eta * eta * (1.0 - dn * dn);
 }
 
@@ -19,7 +21,7 @@ float cosSquaredTransmitted(vec3 d, vec3 n, float eta) {
 // It never divides by sin(theta_1), so normal incidence is fine. Call only when
 // cosSquaredTransmitted(...) >= 0.
 vec3 refractDirection(vec3 d, vec3 n, float eta, float cos2t) {
-    float dn = dot(d, n);
+    float dn = ieeeDot(d, n);
     return eta * d - (eta * dn + sqrt(cos2t)) * n;
 }
 

@@ -25,7 +25,7 @@ void main() {
     float n1 = c.media.x;
     float n2 = c.media.y;
     float eta = n1 / n2;
-    float cosI = -dot(d, n);
+    float cosI = -ieeeDot(d, n);
 
     OpticsResult r;
     r.reflected = vec4(reflectDirection(d, n), schlickF0(n1, n2));
@@ -36,7 +36,7 @@ void main() {
     r.refracted = vec4(l, cos2t);
     r.reflectance = vec4(fresnelReflectance(kFresnelSchlick, n1, n2, cosI, cos2t),
                          fresnelReflectance(kFresnelExact, n1, n2, cosI, cos2t),
-                         fresnelReflectance(kFresnelSchlickExp2, n1, n2, cosI, cos2t), 0.0);
+                         fresnelReflectance(kFresnelSchlickExp2, n1, n2, cosI, cos2t), eta);
     r.beer = vec4(beerLambert(c.attenuation.xyz, c.media.z), 0.0);
     results[i] = r;
 }

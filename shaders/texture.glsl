@@ -4,6 +4,8 @@
 #ifndef VITRUM_TEXTURE_GLSL
 #define VITRUM_TEXTURE_GLSL
 
+#include "ieee_vector_math.glsl"
+
 int addressTexel(int i, int size, bool wrap) {
     return wrap ? ((i % size) + size) % size : clamp(i, 0, size - 1);
 }
@@ -30,9 +32,10 @@ vec3 sampleTexture(uint index, vec2 uv, bool wrapU, bool wrapV) {
     float fy = yc - y0;
     int ix = int(x0);
     int iy = int(y0);
-    vec3 top = mix(texelAt(info, ix, iy, wrapU, wrapV), texelAt(info, ix + 1, iy, wrapU, wrapV), fx);
-    vec3 bottom = mix(texelAt(info, ix, iy + 1, wrapU, wrapV), texelAt(info, ix + 1, iy + 1, wrapU, wrapV), fx);
-    return mix(top, bottom, fy);
+    vec3 top = ieeeMix(texelAt(info, ix, iy, wrapU, wrapV), texelAt(info, ix + 1, iy, wrapU, wrapV), fx);
+    vec3 bottom =
+        ieeeMix(texelAt(info, ix, iy + 1, wrapU, wrapV), texelAt(info, ix + 1, iy + 1, wrapU, wrapV), fx);
+    return ieeeMix(top, bottom, fy);
 }
 
 #endif

@@ -60,6 +60,7 @@ uint stackBase = 0u;
 uint gStack[kTraversalStackSize];
 
 #include "bvh.glsl"
+#include "ieee_vector_math.glsl"
 #include "camera.glsl"
 #include "optics.glsl"
 #include "ray_offset.glsl"
@@ -223,7 +224,7 @@ void startPrimaryRay() {
     // Off the surface the camera lies on (a normal of 0 where none), on the ray's side, with that
     // side's media (host/render/camera_surface.h: primaryRayOrigin).
     vec3 n = params.cameraSurface.xyz;
-    bool behind = dot(d, n) < 0.0;
+    bool behind = ieeeDot(d, n) < 0.0;
     st.ray.origin = vec4(offsetRayOrigin(params.cameraFrom.xyz, behind ? -n : n), uintBitsToFloat(0u));
     uint media = behind ? params.pass.z : params.pass.x;
     st.ray.direction = vec4(d, uintBitsToFloat(usesMaterial(kMaterialGlass) ? media : 0u));
@@ -263,10 +264,10 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
     mat3 normals = loadVertexNormals(triangle);
     vec2 bary = st.hitUv.zw;
     float w0 = 1.0 - bary.x - bary.y;
-    vec3 edgeCross = cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz);
-    float crossLength = length(edgeCross);
+    vec3 edgeCross = ieeeCross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz);
+    float crossLength = ieeeLength(edgeCross);
     vec3 interpolated = w0 * normals[0] + bary.x * normals[1] + bary.y * normals[2];
-    float normalLength = length(interpolated);
+    float normalLength = ieeeLength(interpolated);
     bool shadingValid = normalLength > 0.0 && !isinf(normalLength);
     // A triangle whose corners are collinear has no geometric normal but can still be hit by
     // rounding: fall back to the shading normal, else to facing the ray (hard-cases.md).
@@ -303,8 +304,8 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
     }
     // Opaque: both normals face the incoming ray.
     vec3 d = st.ray.direction.xyz;
-    if (dot(geometricNormal, d) > 0.0) st.hitGeometricNormal.xyz = -geometricNormal;
-    if (dot(shadingNormal, d) > 0.0) st.hitNormal.xyz = -shadingNormal;
+    if (ieeeDot(geometricNormal, d) > 0.0) st.hitGeometricNormal.xyz = -geometricNormal;
+    if (ieeeDot(shadingNormal, d) > 0.0) st.hitNormal.xyz = -shadingNormal;
     if (usesMaterial(kMaterialNormal) && model == kMaterialNormal) {
         gRoundColour += st.ray.weight.xyz * (0.5 * st.hitNormal.xyz + 0.5);
         st.control.x = kPhaseNextRay;
@@ -326,14 +327,14 @@ vec3 directLight(GpuMaterial m, GpuLight light) {
     vec3 p = st.hitPosition.xyz;
     vec3 n = st.hitNormal.xyz;
     vec3 toLight = light.position.xyz - p;
-    float distanceSquared = dot(toLight, toLight);
-    vec3 l = toLight * inversesqrt(distanceSquared);
+    float distanceSquared = ieeeDot(toLight, toLight);
+    vec3 l = toLight / sqrt(distanceSquared);  // as the CPU reference divides
     vec3 colour = light.colour.xyz;
     if (light.position.w != 0.0) colour /= distanceSquared;
-    vec3 result = diffuseColour(m) * max(0.0, dot(n, l));
+    vec3 result = diffuseColour(m) * max(0.0, ieeeDot(n, l));
     if (usesMaterial(kMaterialPhong) && materialModel(m) == kMaterialPhong) {
-        vec3 lr = 2.0 * dot(n, l) * n - l;
-        float c = max(0.0, dot(lr, -st.ray.direction.xyz));
+        vec3 lr = 2.0 * ieeeDot(n, l) * n - l;
+        float c = max(0.0, ieeeDot(lr, -st.ray.direction.xyz));
         float ns = m.specular.w;
         float highlight = c > 0.0 ? pow(c, ns) : (ns == 0.0 ? 1.0 : 0.0);
         result += m.specular.xyz * highlight;
@@ -439,7 +440,7 @@ void enterMedium(inout uvec4 media, inout uint count, uint object) {
 // glass touching glass is glass -> glass (lecture: P2 is 1.5 -> 1.5, never 1.5 -> 1 -> 1.5).
 // Returns whether the ray enters the hit object; `media` and `count` become the stack beyond.
 bool crossGlass(inout uvec4 media, inout uint count) {
-    bool entering = dot(st.ray.direction.xyz, st.hitGeometricNormal.xyz) < 0.0;
+    bool entering = ieeeDot(st.ray.direction.xyz, st.hitGeometricNormal.xyz) < 0.0;
     uint touchingCount = kTouchingProbe ? st.touching.w : 0u;
     if (touchingCount > 0u) gTouchingInterfaces += 1u;
     // Leaving first ...
@@ -497,13 +498,13 @@ void scatter(GpuMaterial m) {
         if (!entering || (kTouchingProbe && st.touching.w > 0u)) n2 = ior(media, count);
         if (!entering) facing = -facing;
         if (!entering) n = -n;
-        if (dot(n, d) >= 0.0) n = facing;  // a shading normal on the wrong side: use the true one
+        if (ieeeDot(n, d) >= 0.0) n = facing;  // a shading normal on the wrong side: use the true one
         if (kTouchingProbe && st.touching.w > 0u) through = st.ray.origin.xyz + st.probe.x * d;
     }
     // Index-matched glass: no optical interface; the same ray goes on with the new stack.
     bool matched = glass && n1 == n2;
     float eta = n1 / n2;
-    float cosI = -dot(d, n);
+    float cosI = -ieeeDot(d, n);
     float cos2t = cosSquaredTransmitted(d, n, eta);
     float r = fresnelReflectance(glass ? fresnelModel() : kFresnelSchlick, n1, n2, cosI, cos2t);
     if (glass && !matched && cos2t < 0.0) gTotalInternalReflections += 1u;

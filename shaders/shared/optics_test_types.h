@@ -25,7 +25,7 @@ struct OpticsResult {
     vec4 refracted;    // .xyz = refractDirection(d, n, n1 / n2, cos2t), (0, 0, 0) at total internal
                        // reflection; .w = cos2t = cosSquaredTransmitted(d, n, n1 / n2)
     vec4 reflectance;  // fresnelReflectance for x = kFresnelSchlick, y = kFresnelExact,
-                       // z = kFresnelSchlickExp2; w = unused
+                       // z = kFresnelSchlickExp2; w = eta = n1 / n2 as the device divided
     vec4 beer;         // .xyz = beerLambert(mu, t); .w = unused
 };
 

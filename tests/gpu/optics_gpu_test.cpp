@@ -249,6 +249,29 @@ double maxAbs(vec3 a, vec3 b) {
     return std::max({double(e.x), double(e.y), double(e.z)});
 }
 
+// The reflectance in double where eta = n1 / n2 is `eta`: every float step but that division done
+// exactly, so the difference between two etas is what that division alone moves.
+double reflectanceForEta(FresnelModel model, double n1, double n2, double cosI, double eta) {
+    const double cos2t = 1.0 - eta * eta * (1.0 - cosI * cosI);
+    if (cos2t < 0.0) return 1.0;
+    if (n1 == n2) return 0.0;
+    const double cosT = std::sqrt(cos2t);
+    const double f0 = optics::schlickF0(n1, n2);
+    switch (model) {
+        case FresnelModel::Exact: {
+            const auto terms = optics::fresnelTerms(n1, n2, cosI, cosT);
+            return 0.5 * (terms.rs + terms.rp);
+        }
+        case FresnelModel::SchlickExp2: {
+            const double c = n1 <= n2 ? cosI : cosT;
+            return f0 + (1.0 - f0) * std::exp2((-5.55473 * c - 6.98316) * c);
+        }
+        case FresnelModel::Schlick: break;
+    }
+    const double c = 1.0 - (n1 <= n2 ? cosI : cosT);
+    return f0 + (1.0 - f0) * std::pow(c, 5.0);
+}
+
 TEST(GlslOptics, RandomCasesMatchCpuReferenceAndPhysics) {
     // 4,099 cases: not a multiple of the group size, so the kernel's index guard is exercised.
     constexpr std::uint32_t kCases = 64u * 64u + 3u;
@@ -258,7 +281,7 @@ TEST(GlslOptics, RandomCasesMatchCpuReferenceAndPhysics) {
     ASSERT_EQ(results.size(), cases.size());
 
     constexpr double kTolerance = 1e-5;
-    double maxDirection = 0, maxCos2t = 0, maxReflectance = 0, maxBeer = 0, maxSnell = 0, maxUnit = 0;
+    double maxReflected = 0, maxDirection = 0, maxCos2t = 0, maxReflectance = 0, maxBeer = 0, maxSnell = 0, maxUnit = 0;
     std::uint32_t refracted = 0, totalInternal = 0, matched = 0, tirDisagreements = 0;
     for (std::uint32_t i = 0; i < kCases; ++i) {
         SCOPED_TRACE("case " + std::to_string(i));
@@ -279,11 +302,20 @@ TEST(GlslOptics, RandomCasesMatchCpuReferenceAndPhysics) {
                                       optics::fresnel(FresnelModel::SchlickExp2, n1, n2, cosI)};
         const vec3 beer = optics::beerLambert(mu, t);
 
-        maxDirection = std::max(maxDirection, maxAbs(xyz(g.reflected), reflected));
+        maxReflected = std::max(maxReflected, maxAbs(xyz(g.reflected), reflected));
         EXPECT_NEAR(g.reflected.w, optics::schlickF0(n1, n2), kTolerance);
         maxCos2t = std::max(maxCos2t, std::abs(double(g.refracted.w) - cos2t));
-        for (int m = 0; m < 3; ++m)
-            maxReflectance = std::max(maxReflectance, std::abs(double(g.reflectance[m]) - reflectance[m]));
+        // Vulkan lets a device round a division to 2.5 ulp (lavapipe and the CPU round it exactly).
+        // Near the critical angle R has an unbounded slope, so the one division into eta moves R by
+        // far more than its ulps: what it moved by on this device is allowed on top.
+        const float gpuEta = g.reflectance.w;
+        EXPECT_LE(std::abs(double(gpuEta) - double(n1) / n2), 2.5 * std::ldexp(1.0, std::ilogb(eta) - 23)) << "n1 / n2";
+        const FresnelModel models[3] = {FresnelModel::Schlick, FresnelModel::Exact, FresnelModel::SchlickExp2};
+        for (int m = 0; m < 3; ++m) {
+            const double byDivision = std::abs(reflectanceForEta(models[m], n1, n2, cosI, gpuEta) -
+                                               reflectanceForEta(models[m], n1, n2, cosI, eta));
+            maxReflectance = std::max(maxReflectance, std::abs(double(g.reflectance[m]) - reflectance[m]) - byDivision);
+        }
         maxBeer = std::max(maxBeer, maxAbs(xyz(g.beer), beer));
 
         // Law of reflection: unit length, same angle to n on the other side.
@@ -334,9 +366,15 @@ TEST(GlslOptics, RandomCasesMatchCpuReferenceAndPhysics) {
     }
     std::cout << "GlslOptics sweep: " << kCases << " cases, " << refracted << " refracted, " << totalInternal
               << " TIR, " << matched << " index-matched, " << tirDisagreements << " TIR disagreements\n"
-              << "  max |GPU - CPU|: directions " << maxDirection << ", cos2t " << maxCos2t << ", reflectance "
-              << maxReflectance << ", Beer-Lambert " << maxBeer << "\n"
+              << "  max |GPU - CPU|: reflected " << maxReflected << ", refracted " << maxDirection << ", cos2t "
+              << maxCos2t << ", reflectance " << maxReflectance << " (beyond what the division into eta moved)"
+              << ", Beer-Lambert " << maxBeer << "\n"
               << "  max Snell residual " << maxSnell << ", max | |v| - 1 | " << maxUnit << "\n";
+    // d - 2 (d.n) n is multiplies and adds only, which every device rounds as IEEE says: the CPU's
+    // result to the bit unless the driver fused some into FMAs (gpu/spirv_float_semantics.h forbids
+    // it). Refraction takes a square root and the Fresnel terms divide, which Vulkan lets a device
+    // round less exactly (2.5 ulp for a division).
+    EXPECT_EQ(maxReflected, 0.0) << "the device contracts multiplies and adds that the CPU rounds apart";
     EXPECT_LE(maxDirection, kTolerance);
     EXPECT_LE(maxCos2t, kTolerance);
     EXPECT_LE(maxReflectance, kTolerance);

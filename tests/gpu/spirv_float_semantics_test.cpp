@@ -1,7 +1,7 @@
 // withCpuFloatSemantics (host/gpu/spirv_float_semantics.h) read back from the words it writes:
 // every multiply and add of the real kernels decorated once, infinities and NaNs kept where asked,
 // nothing else changed. That a driver then computes what the CPU does is for the GPU tests to see
-// (GlslOptics.RandomCasesMatchCpuReferenceAndPhysics holds reflection and cos^2 to the bit).
+// (GlslOptics.RandomCasesMatchCpuReferenceAndPhysics holds the reflected direction to the bit).
 #include <cstdint>
 #include <map>
 #include <stdexcept>
