@@ -204,5 +204,36 @@ TEST(MeshTexture, TexturedQuadMatchesReferenceWithBothFilters) {
     }
 }
 
+// Wrapping left of and above the texture (u < 0, and v > 1, which samples at 1 - v < 0): a 5 x 3
+// texture of distinct colours magnified over a quad whose uvs run from -1 to 1 and from 0 to 2,
+// so a texel taken from the wrong column or row shows on many pixels. GLSL leaves % undefined for
+// a negative operand (texture.glsl).
+TEST(MeshTexture, TexelsLeftOfAndAboveTheTextureWrapAround) {
+    std::vector<glm::vec3> texels;
+    for (int i = 0; i < 15; ++i) texels.push_back(glm::vec3(float(i % 5) / 4.0f, float(i / 5) / 2.0f, float(i % 2)));
+    for (TextureFilter filter : {TextureFilter::Bilinear, TextureFilter::Nearest}) {
+        Scene scene;
+        scene.camera = {.from = {0, 0, 3}, .at = {0, 0, 0}, .up = {0, 1, 0}, .fovY = 40, .width = 80, .height = 60};
+        scene.lights = {{.position = {0, 0, 5}, .colour = glm::vec3(1.0f)}};
+        scene.textures.push_back(Texture{"colours", 5, 3, texels});
+        Material m;
+        m.model = MaterialModel::Lambert;
+        m.diffuseTexture = 0;
+        scene.materials.push_back(m);
+        glm::vec3 p[4] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+        glm::vec2 uv[4] = {{-1, 0}, {1, 0}, {1, 2}, {-1, 2}};
+        for (auto [a, b, c] : {std::array{0, 1, 2}, std::array{0, 2, 3}}) {
+            Triangle t;
+            t.position[0] = p[a], t.position[1] = p[b], t.position[2] = p[c];
+            t.uv[0] = uv[a], t.uv[1] = uv[b], t.uv[2] = uv[c];
+            t.normal[0] = t.normal[1] = t.normal[2] = glm::vec3(0, 0, 1);
+            scene.triangles.push_back(t);
+        }
+        scene.objectNames = {"quad"};
+        scene.settings.filter = filter;
+        expectImagesMatch(renderBoth(scene));
+    }
+}
+
 }  // namespace
 }  // namespace vitrum::testing
