@@ -171,11 +171,12 @@ std::vector<std::size_t> passOrder(std::span<const TracedRay> rays, bool sorted,
 }
 
 // Checks the trace-only kernel's results against vitrum's CPU traversal on every 97th ray:
-// every traversal over, and the same hit or miss, at the same t for closest hits.
+// every traversal over, and the same hit or miss, at the same t for closest hits (to the ulps a
+// device's division may add).
 void checkTraceOnly(const bench::TraceOnlyKernel& kernel, const std::vector<std::size_t>& order, const Bvh& bvh,
                     std::span<const gpu::TriangleVertices> triangles, const std::vector<TracedRay>& rays,
                     const char* file) {
-    std::size_t checked = 0, agree = 0;
+    std::size_t checked = 0, agree = 0, anyHitDisagreements = 0;
     for (std::size_t k = 0; k < order.size(); ++k) {
         const glm::vec4& h = kernel.hit(k);
         if (h.z != 1.0f) throw std::runtime_error(std::string(file) + ": a trace-only traversal did not finish");
@@ -184,15 +185,22 @@ void checkTraceOnly(const bench::TraceOnlyKernel& kernel, const std::vector<std:
         const Ray<float> ray{r.origin, r.direction, r.tMin, r.tMax};
         ++checked;
         if (r.anyHit) {
-            agree += traceAny<float>(bvh.nodes, triangles, ray) == (h.x >= 0.0f);
+            const bool same = traceAny<float>(bvh.nodes, triangles, ray) == (h.x >= 0.0f);
+            agree += same;
+            anyHitDisagreements += !same;
         } else {
             const auto ours = traceClosest<float>(bvh.nodes, triangles, ray);
-            agree += ours ? h.x == ours->t : h.x < 0.0f;
+            // The same t to 4 ulps: t divides by the triangle's determinant, which Vulkan lets a
+            // device round to 2.5 ulps (lavapipe rounds it as the CPU does: the same t exactly).
+            agree += ours ? std::abs(h.x - ours->t) <= 4.0f * (std::nextafter(ours->t, INFINITY) - ours->t) : h.x < 0.0f;
         }
     }
-    if (agree + checked / 1000 < checked)
+    // Where a device divides less exactly, a hit within ulps of a ray's tMin or tMax may fall on
+    // the other side of it: up to 0.5% of the rays (lavapipe: none).
+    if (agree + checked / 200 < checked)
         throw std::runtime_error(std::string(file) + ": the trace-only kernel disagrees with the CPU traversal on " +
-                                 std::to_string(checked - agree) + " of " + std::to_string(checked) + " rays");
+                                 std::to_string(checked - agree) + " of " + std::to_string(checked) + " rays (" +
+                                 std::to_string(anyHitDisagreements) + " of them any-hit)");
 }
 
 // The SIMD groups' iterations over the rays they traced: each invocation of a trace-only kernel
