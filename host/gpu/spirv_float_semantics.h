@@ -14,7 +14,8 @@ namespace vitrum {
 
 struct FloatSemantics {
     // Adds the SignedZeroInfNanPreserve execution mode (32-bit) to every entry point: only where
-    // the device reports shaderSignedZeroInfNanPreserveFloat32.
+    // the device reports shaderSignedZeroInfNanPreserveFloat32. Core in SPIR-V 1.4, so no
+    // extension is declared: the kernels are built for Vulkan 1.2, SPIR-V 1.5.
     bool preserveInfNan = false;
 };
 
