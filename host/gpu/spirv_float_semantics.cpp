@@ -94,7 +94,7 @@ std::vector<std::uint32_t> withCpuFloatSemantics(std::span<const std::uint32_t> 
             inserted[typesBegin].insert(inserted[typesBegin].end(), {instructionHead(3, kOpDecorate), id, kNoContraction});
 
     std::vector<std::uint32_t> result;
-    result.reserve(spirv.size() + inserted[typesBegin].size() + 16);
+    result.reserve(spirv.size() + 3 * contractible.size() + 16);
     std::size_t copied = 0;
     for (const auto& [offset, words] : inserted) {
         result.insert(result.end(), spirv.begin() + std::ptrdiff_t(copied), spirv.begin() + std::ptrdiff_t(offset));

@@ -173,6 +173,20 @@ TEST(Environment, A4096x2048HdrMapFitsAndAnOversizedOneIsRefusedNamingTheLimit) 
     }
 }
 
+// A 2 x 2 quad on z = 0 facing +z, object "quad" of material 0, whose corners (-1, -1), (1, -1),
+// (1, 1), (-1, 1) have the uvs `uv`.
+void addTexturedQuad(Scene& scene, const std::array<glm::vec2, 4>& uv) {
+    const glm::vec3 p[4] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    for (auto [a, b, c] : {std::array{0, 1, 2}, std::array{0, 2, 3}}) {
+        Triangle t;
+        t.position[0] = p[a], t.position[1] = p[b], t.position[2] = p[c];
+        t.uv[0] = uv[a], t.uv[1] = uv[b], t.uv[2] = uv[c];
+        t.normal[0] = t.normal[1] = t.normal[2] = glm::vec3(0, 0, 1);
+        scene.triangles.push_back(t);
+    }
+    scene.objectNames = {"quad"};
+}
+
 // map_Kd on a quad: sampled at (u, 1 - v) with wrapping, bilinear or nearest, the same on both
 // backends; the course's texture image as input.
 TEST(MeshTexture, TexturedQuadMatchesReferenceWithBothFilters) {
@@ -187,17 +201,8 @@ TEST(MeshTexture, TexturedQuadMatchesReferenceWithBothFilters) {
         m.ambient = glm::vec3(0.05f);
         m.diffuseTexture = 0;
         scene.materials.push_back(m);
-        // A 2 x 2 quad on z = 0 whose uvs run to 2, so the texture repeats twice each way.
-        glm::vec3 p[4] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
-        glm::vec2 uv[4] = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
-        for (auto [a, b, c] : {std::array{0, 1, 2}, std::array{0, 2, 3}}) {
-            Triangle t;
-            t.position[0] = p[a], t.position[1] = p[b], t.position[2] = p[c];
-            t.uv[0] = uv[a], t.uv[1] = uv[b], t.uv[2] = uv[c];
-            t.normal[0] = t.normal[1] = t.normal[2] = glm::vec3(0, 0, 1);
-            scene.triangles.push_back(t);
-        }
-        scene.objectNames = {"quad"};
+        // uvs that run to 2, so the texture repeats twice each way.
+        addTexturedQuad(scene, {{{0, 0}, {2, 0}, {2, 2}, {0, 2}}});
         scene.settings.filter = filter;
         RenderPair r = renderBoth(scene);
         expectImagesMatch(r);
@@ -220,16 +225,7 @@ TEST(MeshTexture, TexelsLeftOfAndAboveTheTextureWrapAround) {
         m.model = MaterialModel::Lambert;
         m.diffuseTexture = 0;
         scene.materials.push_back(m);
-        glm::vec3 p[4] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
-        glm::vec2 uv[4] = {{-1, 0}, {1, 0}, {1, 2}, {-1, 2}};
-        for (auto [a, b, c] : {std::array{0, 1, 2}, std::array{0, 2, 3}}) {
-            Triangle t;
-            t.position[0] = p[a], t.position[1] = p[b], t.position[2] = p[c];
-            t.uv[0] = uv[a], t.uv[1] = uv[b], t.uv[2] = uv[c];
-            t.normal[0] = t.normal[1] = t.normal[2] = glm::vec3(0, 0, 1);
-            scene.triangles.push_back(t);
-        }
-        scene.objectNames = {"quad"};
+        addTexturedQuad(scene, {{{-1, 0}, {1, 0}, {1, 2}, {-1, 2}}});
         scene.settings.filter = filter;
         expectImagesMatch(renderBoth(scene));
     }

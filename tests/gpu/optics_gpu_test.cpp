@@ -249,29 +249,6 @@ double maxAbs(vec3 a, vec3 b) {
     return std::max({double(e.x), double(e.y), double(e.z)});
 }
 
-// The reflectance in double where eta = n1 / n2 is `eta`: every float step but that division done
-// exactly, so the difference between two etas is what that division alone moves.
-double reflectanceForEta(FresnelModel model, double n1, double n2, double cosI, double eta) {
-    const double cos2t = 1.0 - eta * eta * (1.0 - cosI * cosI);
-    if (cos2t < 0.0) return 1.0;
-    if (n1 == n2) return 0.0;
-    const double cosT = std::sqrt(cos2t);
-    const double f0 = optics::schlickF0(n1, n2);
-    switch (model) {
-        case FresnelModel::Exact: {
-            const auto terms = optics::fresnelTerms(n1, n2, cosI, cosT);
-            return 0.5 * (terms.rs + terms.rp);
-        }
-        case FresnelModel::SchlickExp2: {
-            const double c = n1 <= n2 ? cosI : cosT;
-            return f0 + (1.0 - f0) * std::exp2((-5.55473 * c - 6.98316) * c);
-        }
-        case FresnelModel::Schlick: break;
-    }
-    const double c = 1.0 - (n1 <= n2 ? cosI : cosT);
-    return f0 + (1.0 - f0) * std::pow(c, 5.0);
-}
-
 TEST(GlslOptics, RandomCasesMatchCpuReferenceAndPhysics) {
     // 4,099 cases: not a multiple of the group size, so the kernel's index guard is exercised.
     constexpr std::uint32_t kCases = 64u * 64u + 3u;
@@ -310,10 +287,11 @@ TEST(GlslOptics, RandomCasesMatchCpuReferenceAndPhysics) {
         // far more than its ulps: what it moved by on this device is allowed on top.
         const float gpuEta = g.reflectance.w;
         EXPECT_LE(std::abs(double(gpuEta) - double(n1) / n2), 2.5 * std::ldexp(1.0, std::ilogb(eta) - 23)) << "n1 / n2";
+        // (In double, with n2 = n1 / eta for either eta: every step but that division exact.)
         const FresnelModel models[3] = {FresnelModel::Schlick, FresnelModel::Exact, FresnelModel::SchlickExp2};
         for (int m = 0; m < 3; ++m) {
-            const double byDivision = std::abs(reflectanceForEta(models[m], n1, n2, cosI, gpuEta) -
-                                               reflectanceForEta(models[m], n1, n2, cosI, eta));
+            const double byDivision = std::abs(optics::fresnel<double>(models[m], n1, double(n1) / gpuEta, cosI) -
+                                               optics::fresnel<double>(models[m], n1, double(n1) / eta, cosI));
             maxReflectance = std::max(maxReflectance, std::abs(double(g.reflectance[m]) - reflectance[m]) - byDivision);
         }
         maxBeer = std::max(maxBeer, maxAbs(xyz(g.beer), beer));
