@@ -85,7 +85,7 @@ PlainCamera plainCamera(const Camera& camera, const TraversalNodes& tree) {
 class PlainKernel {
 public:
     template <std::size_t N>
-    PlainKernel(const VulkanDevice& device, const std::uint32_t (&spirv)[N], VkDescriptorType sceneBinding,
+    PlainKernel(VulkanDevice& device, const std::uint32_t (&spirv)[N], VkDescriptorType sceneBinding,
                 const std::vector<PlainNode>& nodes, const std::vector<gpu::TriangleVertices>& triangles,
                 const PlainCamera& camera)
         : pipeline_(device, std::span<const std::uint32_t>(spirv, N),
@@ -94,7 +94,7 @@ public:
           nodes_(sceneBuffer(device, sceneBinding, std::span<const PlainNode>(nodes), "baseline nodes")),
           triangles_(sceneBuffer(device, sceneBinding, std::span<const gpu::TriangleVertices>(triangles), "baseline triangles")),
           camera_(makeStorageBuffer(device, std::span<const PlainCamera>(&camera, 1), "baseline camera")),
-          hits_(device, VkDeviceSize(kWidth) * kHeight * sizeof(glm::vec2), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "baseline hits") {
+          hits_(device, VkDeviceSize(kWidth) * kHeight * sizeof(glm::vec2), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "baseline hits", MemoryUse::Readback) {
         const std::array<const GpuBuffer*, 4> bound = {&nodes_, &triangles_, &camera_, &hits_};
         pipeline_.bind(bound);
     }
@@ -109,7 +109,7 @@ public:
 
 private:
     template <class T>
-    static GpuBuffer sceneBuffer(const VulkanDevice& device, VkDescriptorType type, std::span<const T> data, const char* what) {
+    static GpuBuffer sceneBuffer(VulkanDevice& device, VkDescriptorType type, std::span<const T> data, const char* what) {
         return type == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER ? makeTexelBuffer(device, data, what)
                                                                : makeStorageBuffer(device, data, what);
     }

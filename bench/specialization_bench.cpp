@@ -110,6 +110,7 @@ int run(int argc, char** argv) {
 
     std::ostringstream rows, work;
     std::string deviceName;
+    std::uint32_t tileSize = 0;  // the device's default
     for (const char* file : kScenes) {
         Scene scene = loadScene(fs::path(VITRUM_SOURCE_DIR) / file);
         scene.camera.width = width;
@@ -120,6 +121,7 @@ int run(int argc, char** argv) {
         const Measured& general = c.general;
         const Measured& special = c.special;
         deviceName = general.stats.device;
+        tileSize = special.stats.tileSize;
         const bool identical =
             general.image.pixels.size() == special.image.pixels.size() &&
             std::memcmp(general.image.pixels.data(), special.image.pixels.data(),
@@ -134,8 +136,7 @@ int run(int argc, char** argv) {
              << "x | " << bench::fixed(general.coldCompile, 2) << " | " << bench::fixed(special.coldCompile, 2) << " | "
              << bench::fixed(bench::median(general.warmCompiles), 3) << " | "
              << bench::fixed(bench::median(special.warmCompiles), 3) << " | " << (identical ? "yes" : "**no**") << " |\n";
-        const std::uint32_t tile = VulkanRenderOptions{}.tileSize;
-        const double tilePixels = double(std::min(tile, width)) * std::min(tile, height);
+        const double tilePixels = double(std::min(tileSize, width)) * std::min(tileSize, height);
         work << "| " << name << " | " << special.stats.rays.total() << " | " << k.mediumStackDepth << " | "
              << k.pendingRayCapacity << " | " << general.stats.stateBytesPerPixel << " -> "
              << special.stats.stateBytesPerPixel << " | "
@@ -173,8 +174,7 @@ int run(int argc, char** argv) {
               "sized to what the scene can reach, its code lacks what the scene cannot need, and it looks for no touching "
               "surfaces where no two glass objects' boxes overlap. State is the trace state, the traversal stack "
               "and the pending rays of one pixel; a tile is "
-           << VulkanRenderOptions{}.tileSize << "x" << VulkanRenderOptions{}.tileSize
-           << " pixels, clipped to the image.\n\n"
+           << tileSize << "x" << tileSize << " pixels (the device's default), clipped to the image.\n\n"
            << "| scene | rays | medium stack | pending-ray stack | state bytes a pixel | state MiB a tile saved | "
               "glass hits not examined for touching | code removed |\n"
            << "|---|---:|---:|---:|---:|---:|---:|---|\n"

@@ -31,12 +31,12 @@ public:
     // `order`: the rays to trace, in the order the kernel's invocations take them; an invocation
     // given bench::kIdleLane traces nothing, as a lane of trace.comp without a ray waits.
     // trace_rays.comp on vitrum's binary tree:
-    TraceOnlyKernel(const VulkanDevice& device, const TraversalNodes& tree,
+    TraceOnlyKernel(VulkanDevice& device, const TraversalNodes& tree,
                     std::span<const gpu::TriangleVertices> triangles, std::span<const TracedRay> rays,
                     std::span<const std::size_t> order)
         : TraceOnlyKernel(device, trace_rays_spv, nodeTexels(tree), tree.rootEntry, triangles, rays, order) {}
     // trace_rays_wide.comp on the same tree collapsed into 8-wide nodes (wide_bvh.h):
-    TraceOnlyKernel(const VulkanDevice& device, const WideBvh& tree, std::span<const gpu::TriangleVertices> triangles,
+    TraceOnlyKernel(VulkanDevice& device, const WideBvh& tree, std::span<const gpu::TriangleVertices> triangles,
                     std::span<const TracedRay> rays, std::span<const std::size_t> order)
         : TraceOnlyKernel(device, trace_rays_wide_spv, tree.texels, tree.rootEntry, triangles, rays, order) {}
 
@@ -57,7 +57,7 @@ public:
 
 private:
     template <std::size_t N>
-    TraceOnlyKernel(const VulkanDevice& device, const std::uint32_t (&spirv)[N], std::span<const glm::vec4> nodes,
+    TraceOnlyKernel(VulkanDevice& device, const std::uint32_t (&spirv)[N], std::span<const glm::vec4> nodes,
                     std::uint32_t rootEntry, std::span<const gpu::TriangleVertices> triangles,
                     std::span<const TracedRay> rays, std::span<const std::size_t> order)
         : pipeline_(device, std::span<const std::uint32_t>(spirv),
@@ -86,7 +86,7 @@ private:
         const glm::uvec4 control(rootEntry, count_, 0u, 0u);
         control_ = makeStorageBuffer(device, std::span<const glm::uvec4>(&control, 1), "trace-only control");
         hits_ = GpuBuffer(device, std::max<VkDeviceSize>(16, VkDeviceSize(count_) * sizeof(glm::vec4)),
-                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "trace-only hits");
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "trace-only hits", MemoryUse::Readback);
         const std::array<const GpuBuffer*, 5> bound = {&nodes_, &triangles_, &rays_, &control_, &hits_};
         pipeline_.bind(bound);
     }

@@ -9,6 +9,8 @@
 #include "app/commands.h"
 #include "bvh/bvh.h"
 #include "common/error.h"
+#include "gpu/gpu_buffer.h"
+#include "gpu/tile_size.h"
 #include "gpu/trace_pipeline.h"
 #include "gpu/vulkan_device.h"
 #include "image/image_diff.h"
@@ -164,6 +166,11 @@ int devicesCommand(int argc, char** argv, int first) {
                     static_cast<unsigned long long>(d.maxStorageBufferRange >> 20), d.maxTexelBufferElements);
         // Without it the driver may assume no value is infinite or NaN (gpu/spirv_float_semantics.h).
         std::printf("   infinities and NaNs in kernels: %s\n", d.preservesInfNan ? "kept (IEEE)" : "the driver's choice");
+        // Where the kernels' buffers and the scene go (gpu/gpu_buffer.h's MemoryUse), and the tile
+        // that sizes the per-pixel ones (gpu/tile_size.h).
+        std::printf("   device-local memory %s, of it mappable by the host %s; tiles of %u pixels a side\n",
+                    describeBytes(d.deviceLocalBytes).c_str(), describeBytes(d.mappableDeviceLocalBytes).c_str(),
+                    defaultTileSize(d));
     }
     return 0;
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <optional>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -15,6 +16,7 @@
 #include "common/progress.h"
 #include "cpu/reference_renderer.h"
 #include "gpu/gpu_buffer.h"
+#include "gpu/tile_size.h"
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
 #include "image/image.h"
@@ -60,8 +62,9 @@ Renders SCENE (a .json scene file or a bare .obj) and writes OUT: .png (8-bit sR
   --iteration-budget N     GPU loop steps per subgroup (8 pixels on lavapipe) and dispatch
                            (default )" +
            std::to_string(gpuDefaults.iterationBudget) + R"(; lavapipe silently stops loops at 65,535)
-  --tile N                 GPU tile size in pixels (default )" +
-           std::to_string(gpuDefaults.tileSize) + R"()
+  --tile N                 GPU tile size in pixels, 8..4096 (default )" +
+           std::to_string(kCpuTileSize) + R"( on lavapipe; on a GPU the
+                           largest whose buffers fit an eighth of its memory: 'vitrum devices')
   --no-specialize          GPU: the general kernel instead of one built for what the scene
                            needs (same image; for comparison, docs/specialization.md)
 )";
@@ -145,7 +148,7 @@ RenderCommand parse(int argc, char** argv, int first) {
             c.background = b;
         } else if (flag == "--stats") c.statsPath = args.valueOf(flag);
         else if (flag == "--iteration-budget") c.gpu.iterationBudget = Arguments::toUint(flag, args.valueOf(flag), kMinIterationBudget, 1u << 24);
-        else if (flag == "--tile") c.gpu.tileSize = Arguments::toUint(flag, args.valueOf(flag), 8, 4096);
+        else if (flag == "--tile") c.gpu.tileSize = Arguments::toUint(flag, args.valueOf(flag), kMinTileSize, kMaxTileSize);
         else if (flag == "--no-specialize") c.gpu.specialize = false;
         else if (flag.rfind("-", 0) == 0) throw InputError("unknown option " + flag + " (see vitrum render --help)");
         else if (c.scenePath.empty()) c.scenePath = flag;
@@ -208,28 +211,27 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
                          std::to_string(gpu::kMaxTriangles));
     VkDeviceSize texels = 0;
     for (const Texture& texture : scene.textures) texels += texture.texels.size();
-    const std::uint32_t tile = std::max(8u, options.tileSize);
+    const std::uint32_t tile = tileSizeFor(device.description(), options.tileSize);
     const VkDeviceSize tilePixels =
         VkDeviceSize(std::min(tile, scene.camera.width)) * std::min(tile, scene.camera.height);
     // As gpu/vulkan_renderer.cpp binds them: the scene's geometry and materials as texel buffers.
     constexpr BufferKind kTexel = BufferKind::Texel, kStorage = BufferKind::Storage;
-    const struct {
+    struct Buffer {
         const char* what;
         VkDeviceSize bytes;
         BufferKind kind;
         bool perTile = false;  // sized by --tile, not by the scene or the image
-    } buffers[] = {
+    };
+    std::vector<Buffer> buffers{
         {"BVH nodes", triangles * sizeof(gpu::TraversalNode), kTexel},  // at most triangles - 1 interior nodes
         {"triangle vertices", triangles * sizeof(gpu::TriangleVertices), kTexel},
         {"triangle normals and uvs", triangles * sizeof(gpu::TriangleShading), kTexel},
         {"materials", scene.materials.size() * sizeof(gpu::GpuMaterial), kTexel},
         {"lights", scene.lights.size() * sizeof(gpu::GpuLight), kTexel},
         {"texture texels", texels * 3 * sizeof(float), kStorage},
-        {"pixels of one tile", tilePixels * sizeof(glm::vec4), kStorage, true},
-        {"trace state of one tile", tilePixels * sizeof(gpu::TraceState), kStorage, true},
-        {"pending rays of one tile", tilePixels * gpu::kRayStackSize * sizeof(gpu::PendingRay), kStorage, true},
-        {"traversal stacks of one tile", tilePixels * gpu::kTraversalStackSize * sizeof(std::uint32_t), kStorage, true},
     };
+    for (const TileBuffer& buffer : kTileBuffers)
+        buffers.push_back({buffer.what, tilePixels * buffer.bytesPerPixel, kStorage, true});
     VkDeviceSize total = 0;
     for (const auto& buffer : buffers) {
         if (buffer.bytes > bufferLimit(device, buffer.kind).bytes) {
@@ -239,15 +241,12 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         }
         total += buffer.bytes;
     }
-    VkPhysicalDeviceMemoryProperties memory{};
-    vkGetPhysicalDeviceMemoryProperties(device.physicalDevice(), &memory);
-    VkDeviceSize largestHeap = 0;
-    for (std::uint32_t i = 0; i < memory.memoryHeapCount; ++i)
-        largestHeap = std::max(largestHeap, memory.memoryHeaps[i].size);
-    if (largestHeap > 0 && total > largestHeap)
+    // All of them live in device-local memory (gpu/gpu_buffer.h's MemoryUse) but the tile's pixels.
+    const VkDeviceSize deviceLocal = device.description().deviceLocalBytes;
+    if (deviceLocal > 0 && total > deviceLocal)
         throw InputError("the scene does not fit the device: its buffers need " + describeBytes(total) +
-                         " in all, but the largest memory heap of " + device.name() + " has " +
-                         describeBytes(largestHeap));
+                         " in all, but the largest device-local memory heap of " + device.name() + " has " +
+                         describeBytes(deviceLocal));
 }
 
 }  // namespace

@@ -2,7 +2,9 @@
 
 #include <cstdlib>
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "common/error.h"
 #include "gpu/vulkan_error.h"
@@ -23,6 +25,32 @@ std::optional<VkDeviceSize> testBufferLimit() {
 }
 
 }  // namespace
+
+std::optional<std::uint32_t> memoryTypeFor(const VkPhysicalDeviceMemoryProperties& memory, std::uint32_t typeBits,
+                                           MemoryUse use) {
+    constexpr VkMemoryPropertyFlags kMappable = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    // What each use requires, and what it prefers on top where the device has it. Vulkan lists a
+    // device's memory types so that, of two equally fast ones, the one with fewer properties comes
+    // first: the first device-local type is a discrete GPU's own memory, before the part of it the
+    // host can map, and the first mappable type is host memory.
+    VkMemoryPropertyFlags required = kMappable, preferred = 0;
+    switch (use) {
+        case MemoryUse::HostShared: preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT; break;
+        case MemoryUse::Readback: preferred = VK_MEMORY_PROPERTY_HOST_CACHED_BIT; break;
+        case MemoryUse::Upload:
+        case MemoryUse::DeviceOnly: required = 0, preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT; break;
+        case MemoryUse::Staging: break;
+    }
+    for (VkMemoryPropertyFlags wanted : {required | preferred, required})
+        for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i)
+            if ((typeBits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & wanted) == wanted) return i;
+    return std::nullopt;
+}
+
+bool stagedUploadsForced() {
+    const char* text = std::getenv("VITRUM_STAGED_UPLOADS");
+    return text && std::string_view(text) == "1";
+}
 
 std::string describeBytes(VkDeviceSize bytes) {
     if (bytes < (VkDeviceSize(1) << 20)) return std::to_string(bytes) + " bytes";
@@ -46,7 +74,8 @@ InputError bufferTooLarge(const VulkanDevice& device, const std::string& what, V
                       limit.source + ")");
 }
 
-GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsageFlags usage, const std::string& what)
+GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsageFlags usage, const std::string& what,
+                     MemoryUse use)
     : device_(device.device()), size_(size) {
     if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && size > bufferLimit(device, BufferKind::Storage).bytes)
         throw bufferTooLarge(device, what, size, BufferKind::Storage);
@@ -56,7 +85,7 @@ GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsag
     VkBufferCreateInfo info{
         .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
         .size = size,
-        .usage = usage,
+        .usage = usage | (use == MemoryUse::Upload ? VkBufferUsageFlags(VK_BUFFER_USAGE_TRANSFER_DST_BIT) : 0u),
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
     };
     VkBuffer buffer = VK_NULL_HANDLE;
@@ -65,12 +94,12 @@ GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsag
 
     VkMemoryRequirements requirements;
     vkGetBufferMemoryRequirements(device_, buffer, &requirements);
+    const std::optional<std::uint32_t> type = memoryTypeFor(device.memoryProperties(), requirements.memoryTypeBits, use);
+    if (!type) throw VulkanError(VK_ERROR_FEATURE_NOT_PRESENT, "no memory type of " + device.name() + " fits " + what);
     VkMemoryAllocateInfo allocate{
         .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
         .allocationSize = requirements.size,
-        .memoryTypeIndex = device.findMemoryType(
-            requirements.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
-            VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT),
+        .memoryTypeIndex = *type,
     };
     VkDeviceMemory memory = VK_NULL_HANDLE;
     VkResult result = vkAllocateMemory(device_, &allocate, nullptr, &memory);
@@ -80,7 +109,33 @@ GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsag
     VK_CHECK(result);
     memory_ = UniqueMemory(device_, memory);
     VK_CHECK(vkBindBufferMemory(device_, buffer, memory, 0));
-    VK_CHECK(vkMapMemory(device_, memory, 0, VK_WHOLE_SIZE, 0, &mapped_));
+    const VkMemoryPropertyFlags mappable = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    const bool map = use == MemoryUse::Upload ? !stagedUploadsForced() : use != MemoryUse::DeviceOnly;
+    if (map && (device.memoryProperties().memoryTypes[*type].propertyFlags & mappable) == mappable)
+        VK_CHECK(vkMapMemory(device_, memory, 0, VK_WHOLE_SIZE, 0, &mapped_));
+}
+
+void GpuBuffer::fill(VulkanDevice& device, std::span<const std::byte> bytes) {
+    if (bytes.empty()) return;  // an empty vector's data() may be null: memcpy must not see it
+    if (bytes.size() > size_) throw std::logic_error("GpuBuffer::fill: more bytes than the buffer holds");
+    if (mapped_) {
+        std::memcpy(mapped_, bytes.data(), bytes.size());
+        return;
+    }
+    GpuBuffer staging(device, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "staging buffer", MemoryUse::Staging);
+    std::memcpy(staging.mapped(), bytes.data(), bytes.size());
+    device.submitAndWait([&](VkCommandBuffer commands) {
+        const VkBufferCopy region{.srcOffset = 0, .dstOffset = 0, .size = bytes.size()};
+        vkCmdCopyBuffer(commands, staging.buffer(), buffer(), 1, &region);
+        // The copy's writes made visible to the kernels that read the buffer in later submissions.
+        const VkMemoryBarrier barrier{
+            .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+            .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+            .dstAccessMask = VK_ACCESS_SHADER_READ_BIT,
+        };
+        vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
+                             &barrier, 0, nullptr, 0, nullptr);
+    });
 }
 
 void GpuBuffer::makeTexelView() {

@@ -1,9 +1,12 @@
-// A storage or uniform buffer in host-visible memory, mapped for its whole life (on lavapipe all
-// memory is host memory; on a discrete GPU this prefers memory that is both device-local and
-// mappable where the device has it).
+// A Vulkan buffer with its own memory, placed by how it is used (MemoryUse). On lavapipe every
+// memory type is host memory and every use gets the same one; on a discrete GPU the kernels' own
+// buffers and the scene live in the GPU's memory, which the host may not be able to map, and the
+// image comes back through memory the host reads fast (docs/gpu-design.md, "Memory").
 #pragma once
 
+#include <cstddef>
 #include <cstring>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -13,11 +16,37 @@
 
 namespace vitrum {
 
+// Who reads and writes a buffer, which decides its memory type.
+enum class MemoryUse {
+    // Written and read by the host between dispatches, and by kernels (render parameters,
+    // statistics): host-visible and coherent, device-local where such memory exists. Mapped.
+    HostShared,
+    // Written by kernels, read by the host (the image, test results): host-visible and coherent,
+    // host-cached where such memory exists, since reads from uncached memory (a discrete GPU's
+    // mappable memory) crawl. Mapped.
+    Readback,
+    // Filled once by the host (makeTexelBuffer, makeStorageBuffer), then only read by kernels:
+    // device-local, mapped and written directly where that memory is host-visible, else filled
+    // by a copy from a staging buffer.
+    Upload,
+    // Used by kernels alone (trace state, pending rays, stacks): device-local, never mapped.
+    DeviceOnly,
+    // Written by the host, copied from by the device (fill's staging buffers): host-visible and
+    // coherent, the first such type (host memory on a discrete GPU). Mapped.
+    Staging,
+};
+
+class GpuBuffer;
+template <class T>
+GpuBuffer makeTexelBuffer(VulkanDevice& device, std::span<const T> data, const std::string& what,
+                          MemoryUse use = MemoryUse::Upload);
+
 class GpuBuffer {
 public:
     GpuBuffer() = default;
     // `what` names the buffer in errors ("BVH nodes needs 300 MiB, the device allows 128 MiB").
-    GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsageFlags usage, const std::string& what);
+    GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsageFlags usage, const std::string& what,
+              MemoryUse use = MemoryUse::HostShared);
     ~GpuBuffer();
     GpuBuffer(GpuBuffer&&) noexcept = default;
     GpuBuffer& operator=(GpuBuffer&&) noexcept = default;
@@ -26,13 +55,12 @@ public:
     // The uvec4 texel view of a buffer made by makeTexelBuffer (VK_NULL_HANDLE otherwise).
     VkBufferView texelView() const { return view_.get(); }
     VkDeviceSize size() const { return size_; }
+    // Null for a buffer the host cannot map (DeviceOnly, or Upload in memory that is not host-visible).
     void* mapped() const { return mapped_; }
 
-    template <class T>
-    void upload(std::span<const T> data) {
-        if (data.empty()) return;  // an empty vector's data() may be null: memcpy must not see it
-        std::memcpy(mapped_, data.data(), data.size_bytes());
-    }
+    // Writes `bytes` at the buffer's start: directly where it is mapped, else through a staging
+    // buffer and a copy on `device`'s queue, after which kernels may read it.
+    void fill(VulkanDevice& device, std::span<const std::byte> bytes);
     template <class T>
     T* as() const {
         return static_cast<T*>(mapped_);
@@ -40,7 +68,7 @@ public:
 
 private:
     template <class T>
-    friend GpuBuffer makeTexelBuffer(const VulkanDevice&, std::span<const T>, const std::string&);
+    friend GpuBuffer makeTexelBuffer(VulkanDevice&, std::span<const T>, const std::string&, MemoryUse);
     void makeTexelView();
 
     UniqueBuffer buffer_;
@@ -67,29 +95,38 @@ std::string describeBytes(VkDeviceSize bytes);
 // "the scene does not fit the device: WHAT needs N MiB, but DEVICE allows M MiB per storage buffer (...)"
 InputError bufferTooLarge(const VulkanDevice& device, const std::string& what, VkDeviceSize size, BufferKind kind);
 
+// The memory type of `memory` for a buffer of that use that may be bound to the types in `typeBits`
+// (VkMemoryRequirements::memoryTypeBits); none where no type has what the use requires.
+std::optional<std::uint32_t> memoryTypeFor(const VkPhysicalDeviceMemoryProperties& memory, std::uint32_t typeBits,
+                                           MemoryUse use);
+
+// For tests only: VITRUM_STAGED_UPLOADS=1 fills every Upload buffer through a staging buffer, as
+// on a discrete GPU, also where its memory is mappable (lavapipe's always is).
+bool stagedUploadsForced();
+
 // A texel buffer of R32G32B32A32_UINT texels holding `data`, whose size must be a multiple of 16
 // bytes, for reading as a storage texel buffer (a readonly uimageBuffer, how trace.comp reads the
 // scene: shaders/bindings.glsl) or as a uniform texel buffer (a usamplerBuffer, as the plain
 // baseline of bench/baseline does). Checks the size against the device's maxTexelBufferElements
-// first.
+// first. `use`: Upload, or HostShared for one the host writes again between dispatches.
 template <class T>
-GpuBuffer makeTexelBuffer(const VulkanDevice& device, std::span<const T> data, const std::string& what) {
+GpuBuffer makeTexelBuffer(VulkanDevice& device, std::span<const T> data, const std::string& what, MemoryUse use) {
     static_assert(sizeof(T) % 16 == 0, "texel buffers hold whole uvec4 texels");
     VkDeviceSize size = std::max<VkDeviceSize>(data.size_bytes(), 16);
     GpuBuffer buffer(device, size, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT,
-                     what);
-    buffer.upload(data);
+                     what, use);
+    buffer.fill(device, std::as_bytes(data));
     buffer.makeTexelView();
     return buffer;
 }
 
 // A storage buffer holding `data` (at least 16 bytes: Vulkan has no empty buffers). Checks the
-// size against the device's maxStorageBufferRange first.
+// size against the device's maxStorageBufferRange first. MemoryUse::Upload.
 template <class T>
-GpuBuffer makeStorageBuffer(const VulkanDevice& device, std::span<const T> data, const std::string& what) {
+GpuBuffer makeStorageBuffer(VulkanDevice& device, std::span<const T> data, const std::string& what) {
     VkDeviceSize size = std::max<VkDeviceSize>(data.size_bytes(), 16);
-    GpuBuffer buffer(device, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, what);
-    buffer.upload(data);
+    GpuBuffer buffer(device, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, what, MemoryUse::Upload);
+    buffer.fill(device, std::as_bytes(data));
     return buffer;
 }
 

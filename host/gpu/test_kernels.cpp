@@ -25,7 +25,7 @@ std::vector<Result> runTestKernel(VulkanDevice& device, std::span<const std::uin
                                                       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
     ComputePipeline pipeline(device, spirv, bindings);
     GpuBuffer input = makeStorageBuffer(device, cases, name);
-    GpuBuffer output(device, cases.size() * sizeof(Result), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, name);
+    GpuBuffer output(device, cases.size() * sizeof(Result), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, name, MemoryUse::Readback);
     const std::array<const GpuBuffer*, 2> bound = {&input, &output};
     pipeline.bind(bound);
     const auto groups = std::uint32_t((cases.size() + groupSize - 1) / groupSize);

@@ -149,6 +149,37 @@ SubgroupSupport subgroupSupportOf(VkPhysicalDevice device) {
     return support;
 }
 
+// DeviceDescription's deviceLocalBytes and mappableDeviceLocalBytes.
+void describeMemory(VkPhysicalDevice device, DeviceDescription& description) {
+    VkPhysicalDeviceMemoryProperties memory;
+    vkGetPhysicalDeviceMemoryProperties(device, &memory);
+    for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i) {
+        const VkMemoryType& type = memory.memoryTypes[i];
+        if (!(type.propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) continue;
+        const std::uint64_t heap = memory.memoryHeaps[type.heapIndex].size;
+        description.deviceLocalBytes = std::max(description.deviceLocalBytes, heap);
+        if (type.propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)
+            description.mappableDeviceLocalBytes = std::max(description.mappableDeviceLocalBytes, heap);
+    }
+}
+
+DeviceDescription describeDevice(VkPhysicalDevice device, std::uint32_t index) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(device, &p);
+    DeviceDescription d{.index = index,
+                        .name = p.deviceName,
+                        .type = deviceTypeName(p.deviceType),
+                        .cpu = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU,
+                        .apiVersion = p.apiVersion,
+                        .maxStorageBufferRange = p.limits.maxStorageBufferRange,
+                        .maxTexelBufferElements = p.limits.maxTexelBufferElements};
+    // Subgroup properties are Vulkan 1.1, float controls 1.2; vitrum refuses devices below 1.2.
+    if (p.apiVersion >= VK_API_VERSION_1_1) d.subgroups = subgroupSupportOf(device);
+    d.preservesInfNan = p.apiVersion >= VK_API_VERSION_1_2 && keepsInfNan(device);
+    describeMemory(device, d);
+    return d;
+}
+
 }  // namespace
 
 std::vector<DeviceDescription> VulkanDevice::listDevices() {
@@ -156,16 +187,7 @@ std::vector<DeviceDescription> VulkanDevice::listDevices() {
     std::vector<DeviceDescription> result;
     try {
         auto devices = physicalDevices(instance);
-        for (std::uint32_t i = 0; i < devices.size(); ++i) {
-            VkPhysicalDeviceProperties p;
-            vkGetPhysicalDeviceProperties(devices[i], &p);
-            // Subgroup properties are Vulkan 1.1; vitrum refuses devices below 1.2 anyway.
-            const SubgroupSupport subgroups = p.apiVersion >= VK_API_VERSION_1_1 ? subgroupSupportOf(devices[i]) : SubgroupSupport{};
-            // Float controls are Vulkan 1.2, which vitrum needs.
-            const bool infNan = p.apiVersion >= VK_API_VERSION_1_2 && keepsInfNan(devices[i]);
-            result.push_back({i, p.deviceName, deviceTypeName(p.deviceType), p.apiVersion, subgroups,
-                              p.limits.maxStorageBufferRange, p.limits.maxTexelBufferElements, infNan});
-        }
+        for (std::uint32_t i = 0; i < devices.size(); ++i) result.push_back(describeDevice(devices[i], i));
     } catch (...) {
         vkDestroyInstance(instance, nullptr);
         throw;
@@ -194,15 +216,15 @@ VulkanDevice::VulkanDevice(const std::string& selector) {
             VK_CHECK(create(instance_, &info, nullptr, &messenger_));
         }
         auto devices = physicalDevices(instance_);
-        physicalDevice_ = devices[selectDevice(devices, selector)];
+        const std::size_t index = selectDevice(devices, selector);
+        physicalDevice_ = devices[index];
         vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
         vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
-        subgroups_ = subgroupSupportOf(physicalDevice_);
         if (properties_.apiVersion < VK_API_VERSION_1_2)
             throw InputError(std::string("Vulkan device ") + properties_.deviceName + " supports only Vulkan " +
                              std::to_string(VK_API_VERSION_MAJOR(properties_.apiVersion)) + "." +
                              std::to_string(VK_API_VERSION_MINOR(properties_.apiVersion)) + "; vitrum needs 1.2");
-        preservesInfNan_ = keepsInfNan(physicalDevice_);
+        description_ = describeDevice(physicalDevice_, std::uint32_t(index));
 
         // The scene's buffers are read as storage texel buffers of R32G32B32A32_UINT texels
         // (shaders/bindings.glsl), which Vulkan requires every device to support.
@@ -240,11 +262,11 @@ VulkanDevice::VulkanDevice(const std::string& selector) {
         const char* fullSubgroupExtension = VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME;
         VkDeviceCreateInfo deviceInfo{
             .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
-            .pNext = subgroups_.fullSubgroups ? &fullSubgroupFeatures : nullptr,
+            .pNext = subgroups().fullSubgroups ? &fullSubgroupFeatures : nullptr,
             .queueCreateInfoCount = 1,
             .pQueueCreateInfos = &queueInfo,
-            .enabledExtensionCount = subgroups_.fullSubgroups ? 1u : 0u,
-            .ppEnabledExtensionNames = subgroups_.fullSubgroups ? &fullSubgroupExtension : nullptr,
+            .enabledExtensionCount = subgroups().fullSubgroups ? 1u : 0u,
+            .ppEnabledExtensionNames = subgroups().fullSubgroups ? &fullSubgroupExtension : nullptr,
         };
         VK_CHECK(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device_));
         vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
@@ -285,22 +307,6 @@ void VulkanDevice::release() {
 }
 
 std::uint32_t VulkanDevice::validationMessages() const { return gValidationMessages.load(); }
-
-std::uint32_t VulkanDevice::findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required) const {
-    for (std::uint32_t i = 0; i < memoryProperties_.memoryTypeCount; ++i)
-        if ((typeBits & (1u << i)) && (memoryProperties_.memoryTypes[i].propertyFlags & required) == required)
-            return i;
-    throw VulkanError(VK_ERROR_FEATURE_NOT_PRESENT, "no suitable Vulkan memory type on " + name());
-}
-
-std::uint32_t VulkanDevice::findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
-                                           VkMemoryPropertyFlags preferred) const {
-    for (std::uint32_t i = 0; i < memoryProperties_.memoryTypeCount; ++i) {
-        auto flags = memoryProperties_.memoryTypes[i].propertyFlags;
-        if ((typeBits & (1u << i)) && (flags & (required | preferred)) == (required | preferred)) return i;
-    }
-    return findMemoryType(typeBits, required);
-}
 
 VkCommandBuffer VulkanDevice::beginCommands() {
     VkCommandBufferAllocateInfo info{

@@ -31,6 +31,7 @@ struct DeviceDescription {
     std::uint32_t index = 0;
     std::string name;
     std::string type;  // "discrete GPU", "integrated GPU", "CPU", ...
+    bool cpu = false;  // VK_PHYSICAL_DEVICE_TYPE_CPU: lavapipe
     std::uint32_t apiVersion = 0;
     SubgroupSupport subgroups;
     std::uint64_t maxStorageBufferRange = 0;  // bytes a storage buffer binding may span
@@ -38,6 +39,11 @@ struct DeviceDescription {
     // Kernels may keep IEEE infinities, NaNs and signed zeros (VkPhysicalDeviceFloatControlsProperties::
     // shaderSignedZeroInfNanPreserveFloat32); vitrum asks for it wherever it can (gpu/spirv_float_semantics.h).
     bool preservesInfNan = false;
+    // The largest device-local memory heap, and the largest one that also has a host-visible
+    // memory type (a discrete GPU's mappable window into its memory: 256 MiB without resizable
+    // BAR, all of it with; the whole heap where the device's memory is the host's).
+    std::uint64_t deviceLocalBytes = 0;
+    std::uint64_t mappableDeviceLocalBytes = 0;
 };
 
 class VulkanDevice {
@@ -58,22 +64,20 @@ public:
     std::uint32_t queueFamily() const { return queueFamily_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     std::string name() const { return properties_.deviceName; }
+    // What listDevices says of this device.
+    const DeviceDescription& description() const { return description_; }
     // SubgroupSupport says what these mean; full subgroups are enabled on this device where it
     // has them.
-    const SubgroupSupport& subgroups() const { return subgroups_; }
-    bool hasSubgroupArithmeticAndBallot() const { return subgroups_.arithmeticAndBallot; }
-    bool hasFullSubgroups() const { return subgroups_.fullSubgroups; }
-    std::uint32_t maxSubgroupSize() const { return subgroups_.maxSize; }
+    const SubgroupSupport& subgroups() const { return description_.subgroups; }
+    bool hasSubgroupArithmeticAndBallot() const { return subgroups().arithmeticAndBallot; }
+    bool hasFullSubgroups() const { return subgroups().fullSubgroups; }
+    std::uint32_t maxSubgroupSize() const { return subgroups().maxSize; }
     // DeviceDescription::preservesInfNan.
-    bool preservesInfNan() const { return preservesInfNan_; }
+    bool preservesInfNan() const { return description_.preservesInfNan; }
     // Messages the validation layer sent so far (0 when validation is off).
     std::uint32_t validationMessages() const;
 
-    // A memory type with all of `required` among `typeBits`; throws if there is none.
-    std::uint32_t findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required) const;
-    // Prefers `preferred` on top of `required` where the device has it.
-    std::uint32_t findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
-                                 VkMemoryPropertyFlags preferred) const;
+    const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
 
     // Records commands with `record`, submits them and waits for them to finish.
     template <class Record>
@@ -85,8 +89,7 @@ private:
     void endSubmitWait(VkCommandBuffer commands);
 
     VkInstance instance_ = VK_NULL_HANDLE;
-    SubgroupSupport subgroups_;
-    bool preservesInfNan_ = false;
+    DeviceDescription description_;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties properties_{};

@@ -6,6 +6,7 @@
 
 #include "gpu/gpu_buffer.h"
 #include "gpu/gpu_layout.h"
+#include "gpu/tile_size.h"
 #include "gpu/trace_kernel_cache.h"
 #include "gpu/trace_pipeline.h"
 #include "render/packed_scene.h"
@@ -83,12 +84,14 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     PackedScene packed = packScene(scene, bvh);
     const std::uint32_t width = scene.camera.width;
     const std::uint32_t height = scene.camera.height;
-    const std::uint32_t tileSize = std::max(8u, options.tileSize);
+    const std::uint32_t tileSize = tileSizeFor(device.description(), options.tileSize);
+    stats.tileSize = tileSize;
     const std::uint32_t tileWidth = std::min(tileSize, width);
     const std::uint32_t tileHeight = std::min(tileSize, height);
 
     const gpu::RenderParams noParams{};
-    GpuBuffer params = makeTexelBuffer(device, std::span<const gpu::RenderParams>(&noParams, 1), "render parameters");
+    GpuBuffer params = makeTexelBuffer(device, std::span<const gpu::RenderParams>(&noParams, 1), "render parameters",
+                                       MemoryUse::HostShared);  // rewritten before every dispatch
     GpuBuffer nodes = makeTexelBuffer(device, spanOf(packed.bvh.nodes), "BVH nodes");
     GpuBuffer vertices = makeTexelBuffer(device, spanOf(packed.vertices), "triangle vertices");
     GpuBuffer shading = makeTexelBuffer(device, spanOf(packed.shading), "triangle normals and uvs");
@@ -101,14 +104,15 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     // Like the state buffers, the pixels are one tile's (a slot a pixel), copied into the image
     // as each tile is done: so the image's size is not bound by the device's buffer limits.
     const VkDeviceSize tilePixels = VkDeviceSize(tileWidth) * tileHeight;
+    // The kernel writes each pixel once; the host reads them.
     GpuBuffer pixels(device, tilePixels * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                     "pixels of one tile");
+                     "pixels of one tile", MemoryUse::Readback);
     GpuBuffer states(device, tilePixels * sizeof(gpu::TraceState), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                     "trace state of one tile");
+                     "trace state of one tile", MemoryUse::DeviceOnly);
     GpuBuffer pendingRays(device, std::max<VkDeviceSize>(tilePixels * kernel.pendingRayCapacity * sizeof(gpu::PendingRay), 16),
-                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "pending rays of one tile");
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "pending rays of one tile", MemoryUse::DeviceOnly);
     GpuBuffer traversalStacks(device, tilePixels * gpu::kTraversalStackSize * sizeof(std::uint32_t),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "traversal stacks of one tile");
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "traversal stacks of one tile", MemoryUse::DeviceOnly);
     stats.stateBytesPerPixel = sizeof(gpu::TraceState) + kernel.pendingRayCapacity * sizeof(gpu::PendingRay) +
                                gpu::kTraversalStackSize * sizeof(std::uint32_t);
     GpuBuffer counters(device, gpu::kDispatchCounterCount * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,

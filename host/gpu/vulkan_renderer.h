@@ -30,7 +30,9 @@ struct VulkanRenderOptions {
     // last counted step; three quarters of the limit leave room for those and for drivers that
     // count differently. Larger values (tests only) let the limit show.
     std::uint32_t iterationBudget = 49152;
-    std::uint32_t tileSize = 256;  // pixels per side; a pixel's trace state is 0.5-1.5 KiB
+    // Pixels a side; 0: the device's default (gpu/tile_size.h: 256 on lavapipe, as large as
+    // memory allows on a GPU). A pixel's buffers take 0.5-1.5 KiB.
+    std::uint32_t tileSize = 0;
     // Build the kernel for what the scene needs (render/trace_specialization.h); false: the
     // general kernel, which decides everything at run time (same image, more code to run).
     bool specialize = true;

@@ -50,6 +50,7 @@ nlohmann::json toJson(const RenderStats& stats) {
     if (stats.kernel) {
         result["kernel"] = toJson(*stats.kernel);
         result["kernel"]["state_bytes_per_pixel"] = stats.stateBytesPerPixel;
+        result["kernel"]["tile_size"] = stats.tileSize;
     }
     return result;
 }

@@ -59,6 +59,7 @@ struct RenderStats {
     SceneFeatures features;                    // what the scene can need (both backends use it)
     std::optional<TraceSpecialization> kernel;  // GPU: what the kernel was built for
     std::uint64_t stateBytesPerPixel = 0;      // GPU: trace state and pending rays of one pixel
+    std::uint32_t tileSize = 0;                // GPU: pixels a side of the tiles rendered
 
     void addPhase(const std::string& name, double seconds) { phaseSeconds.emplace_back(name, seconds); }
     double seconds(const std::string& phase) const;
