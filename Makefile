@@ -45,7 +45,7 @@ bench-performance: build
 	  $(BUILD)/bench/vitrum_bench_whitted $(BENCH_RUNS) >> docs/performance.md.partial
 	mv docs/performance.md.partial docs/performance.md
 
-# The accuracy study: docs/accuracy-vs-time.md and docs/study/ (about 25 minutes on 2 cores).
+# The accuracy study: docs/accuracy-vs-time.md and docs/study/ (8.5-25 minutes on 2 cores).
 STUDY_RUNS ?= 3
 study: build
 	VK_ICD_FILENAMES=$${VK_ICD_FILENAMES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json} \
