@@ -130,7 +130,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     // lavapipe gives each of its threads a fixed share of a dispatch's workgroups, so a thread
     // that runs ahead would otherwise wait for the others at the end (docs/gpu-design.md).
     const bool persistent = options.persistentSubgroups && sums == StatisticsSums::shuffles &&
-                            device.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+                            device.description().cpu;
     TraceKernelCache ownKernels(2);
     TraceKernelCache& kernels = options.kernels ? *options.kernels : ownKernels;
     const TraceKernelCache::Kernel firstPass = kernels.get(device, kernel, false, sums, persistent);

@@ -29,7 +29,7 @@ Render render(const std::string& file, std::uint32_t width, std::uint32_t height
 // Whether the renderer runs the persistent kernel on the test device. On lavapipe, where the
 // tests run, it must: else every comparison here would be of one kernel with itself.
 bool persistentHere() {
-    const bool here = testDevice().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
+    const bool here = testDevice().description().cpu &&
                       statisticsSumsFor(testDevice(), StatisticsSums::shuffles) == StatisticsSums::shuffles;
     if (testDevice().name().find("llvmpipe") != std::string::npos) {
         EXPECT_TRUE(here) << "lavapipe no longer gets the persistent kernel";
