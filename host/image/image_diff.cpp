@@ -7,7 +7,7 @@
 #include <string>
 
 #include "common/error.h"
-#include "image/srgb.h"
+#include "image/srgb8_codes.h"
 
 namespace vitrum {
 namespace {
@@ -47,7 +47,7 @@ ImageDiff diffImages(const Image& a, const Image& b) {
             sumSquared += e * e;
             sumAbs += e;
             pixelMax = std::max(pixelMax, e);
-            codeChanged = codeChanged || linearToSrgb8(a.pixels[i][c]) != linearToSrgb8(b.pixels[i][c]);
+            codeChanged = codeChanged || srgb8Code(a.pixels[i][c]) != srgb8Code(b.pixels[i][c]);
         }
         if (codeChanged) ++srgb8Changed;
         diff.maxAbsError = std::max(diff.maxAbsError, pixelMax);

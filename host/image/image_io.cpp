@@ -26,6 +26,7 @@
 #include "image/png_chunks.h"
 #include "image/pnm_file.h"
 #include "image/srgb.h"
+#include "image/srgb8_codes.h"
 
 namespace vitrum {
 namespace {
@@ -251,8 +252,11 @@ Image readSrgb(const fs::path& path, const FileBytes& file) {
 bool writePng(const Image& image, const fs::path& file) {
     std::vector<unsigned char> data(image.pixels.size() * 3);
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-        for (int c = 0; c < 3; ++c) data[i * 3 + c] = linearToSrgb8(image.pixels[i][c]);
+        for (int c = 0; c < 3; ++c) data[i * 3 + c] = srgb8Code(image.pixels[i][c]);
     }
+    // Every row with the Sub filter instead of each row with the best of the five filters: at
+    // 1920x1080 the write took 35-45% less time and the files differed by -1% to +3% in size.
+    stbi_write_force_png_filter = 1;
     return stbi_write_png(file.string().c_str(), int(image.width), int(image.height), 3, data.data(),
                           int(image.width) * 3) != 0;
 }
