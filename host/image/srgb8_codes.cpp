@@ -46,8 +46,9 @@ const CodeTable& codeTable() {
 
 std::uint8_t srgb8Code(float linear) {
     const CodeTable& table = codeTable();
-    // As displayedSrgb: clamped to [0, 1], a non-finite value as 0.
-    const float c = std::isfinite(linear) ? std::fmin(std::fmax(linear, 0.0f), 1.0f) : 0.0f;
+    // As displayedSrgb: clamped to [0, 1], a non-finite value as 0 (NaN fails every comparison).
+    // Comparisons rather than std::isfinite, fmin and fmax, which g++ calls out of line here.
+    const float c = linear > 0.0f ? (linear <= 1.0f ? linear : (linear < INFINITY ? 1.0f : 0.0f)) : 0.0f;
     const std::uint8_t code = table.binCode[std::size_t(c * float(kBins))];
     return std::uint8_t(code + (c >= table.firstValue[std::size_t(code) + 1] ? 1 : 0));
 }
