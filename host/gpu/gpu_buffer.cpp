@@ -1,6 +1,7 @@
 #include "gpu/gpu_buffer.h"
 
 #include <cstdlib>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -26,8 +27,8 @@ std::optional<VkDeviceSize> testBufferLimit() {
 
 }  // namespace
 
-std::optional<std::uint32_t> memoryTypeFor(const VkPhysicalDeviceMemoryProperties& memory, std::uint32_t typeBits,
-                                           MemoryUse use) {
+std::vector<std::uint32_t> memoryTypesFor(const VkPhysicalDeviceMemoryProperties& memory, std::uint32_t typeBits,
+                                          MemoryUse use) {
     constexpr VkMemoryPropertyFlags kMappable = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     // What each use requires, and what it prefers on top where the device has it. Vulkan lists a
     // device's memory types so that, of two equally fast ones, the one with fewer properties comes
@@ -41,9 +42,25 @@ std::optional<std::uint32_t> memoryTypeFor(const VkPhysicalDeviceMemoryPropertie
         case MemoryUse::DeviceOnly: required = 0, preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT; break;
         case MemoryUse::Staging: break;
     }
-    for (VkMemoryPropertyFlags wanted : {required | preferred, required})
-        for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i)
-            if ((typeBits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & wanted) == wanted) return i;
+    auto has = [&](std::uint32_t i, VkMemoryPropertyFlags flags) {
+        return (typeBits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & flags) == flags;
+    };
+    std::vector<std::uint32_t> types;
+    for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i)
+        if (has(i, required | preferred)) types.push_back(i);
+    for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i)
+        if (has(i, required) && !has(i, required | preferred)) types.push_back(i);
+    return types;
+}
+
+std::optional<std::uint32_t> firstTypeWithRoom(std::span<const std::uint32_t> types,
+                                               const std::function<VkResult(std::uint32_t)>& allocate) {
+    for (std::uint32_t type : types) {
+        const VkResult result = allocate(type);
+        if (result == VK_SUCCESS) return type;
+        if (result != VK_ERROR_OUT_OF_DEVICE_MEMORY && result != VK_ERROR_OUT_OF_HOST_MEMORY)
+            throwVulkanError(result, "vkAllocateMemory", __FILE__, __LINE__);
+    }
     return std::nullopt;
 }
 
@@ -94,24 +111,29 @@ GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsag
 
     VkMemoryRequirements requirements;
     vkGetBufferMemoryRequirements(device_, buffer, &requirements);
-    const std::optional<std::uint32_t> type = memoryTypeFor(device.memoryProperties(), requirements.memoryTypeBits, use);
-    if (!type) throw VulkanError(VK_ERROR_FEATURE_NOT_PRESENT, "no memory type of " + device.name() + " fits " + what);
-    VkMemoryAllocateInfo allocate{
-        .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
-        .allocationSize = requirements.size,
-        .memoryTypeIndex = *type,
-    };
+    const std::vector<std::uint32_t> types = memoryTypesFor(device.memoryProperties(), requirements.memoryTypeBits, use);
+    if (types.empty()) throw VulkanError(VK_ERROR_FEATURE_NOT_PRESENT, "no memory type of " + device.name() + " fits " + what);
     VkDeviceMemory memory = VK_NULL_HANDLE;
-    VkResult result = vkAllocateMemory(device_, &allocate, nullptr, &memory);
-    if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
+    const std::optional<std::uint32_t> type = firstTypeWithRoom(types, [&](std::uint32_t candidate) {
+        const VkMemoryAllocateInfo allocate{
+            .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+            .allocationSize = requirements.size,
+            .memoryTypeIndex = candidate,
+        };
+        return vkAllocateMemory(device_, &allocate, nullptr, &memory);
+    });
+    if (!type)
         throw InputError("the scene does not fit the device: " + what + " needs " + describeBytes(size) +
-                         " and allocating it failed with " + vkResultName(result));
-    VK_CHECK(result);
+                         " and no memory of " + device.name() + " that could hold it has room");
+    const VkMemoryType* memoryTypes = device.memoryProperties().memoryTypes;
+    auto deviceLocal = [&](std::uint32_t t) { return (memoryTypes[t].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) != 0; };
+    if (deviceLocal(types.front()) && !deviceLocal(*type))
+        warn(what + " did not fit " + device.name() + "'s own memory: the kernels read it from host memory, more slowly");
     memory_ = UniqueMemory(device_, memory);
     VK_CHECK(vkBindBufferMemory(device_, buffer, memory, 0));
     const VkMemoryPropertyFlags mappable = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     const bool map = use == MemoryUse::Upload ? !stagedUploadsForced() : use != MemoryUse::DeviceOnly;
-    if (map && (device.memoryProperties().memoryTypes[*type].propertyFlags & mappable) == mappable)
+    if (map && (memoryTypes[*type].propertyFlags & mappable) == mappable)
         VK_CHECK(vkMapMemory(device_, memory, 0, VK_WHOLE_SIZE, 0, &mapped_));
 }
 

@@ -6,9 +6,11 @@
 
 #include <cstddef>
 #include <cstring>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "common/error.h"
 #include "gpu/vulkan_device.h"
@@ -95,10 +97,17 @@ std::string describeBytes(VkDeviceSize bytes);
 // "the scene does not fit the device: WHAT needs N MiB, but DEVICE allows M MiB per storage buffer (...)"
 InputError bufferTooLarge(const VulkanDevice& device, const std::string& what, VkDeviceSize size, BufferKind kind);
 
-// The memory type of `memory` for a buffer of that use that may be bound to the types in `typeBits`
-// (VkMemoryRequirements::memoryTypeBits); none where no type has what the use requires.
-std::optional<std::uint32_t> memoryTypeFor(const VkPhysicalDeviceMemoryProperties& memory, std::uint32_t typeBits,
-                                           MemoryUse use);
+// The memory types of `memory` for a buffer of that use that may be bound to the types in
+// `typeBits` (VkMemoryRequirements::memoryTypeBits), best first: those with what the use prefers,
+// then those with only what it requires; empty where no type has what the use requires. A buffer
+// takes the first that has room (a GPU's own memory may be full: then the host's).
+std::vector<std::uint32_t> memoryTypesFor(const VkPhysicalDeviceMemoryProperties& memory, std::uint32_t typeBits,
+                                          MemoryUse use);
+
+// The first of `types` that `allocate` gets memory of (`allocate(type)` is the driver's answer);
+// none where each is out of device or host memory. Any other failure throws a VulkanError.
+std::optional<std::uint32_t> firstTypeWithRoom(std::span<const std::uint32_t> types,
+                                               const std::function<VkResult(std::uint32_t)>& allocate);
 
 // For tests only: VITRUM_STAGED_UPLOADS=1 fills every Upload buffer through a staging buffer, as
 // on a discrete GPU, also where its memory is mappable (lavapipe's always is).

@@ -1,8 +1,11 @@
 // Where buffers live (gpu/gpu_buffer.h's MemoryUse): the memory type each use takes on the kinds
 // of device there are, and scenes uploaded through staging buffers as on a discrete GPU.
 #include "gpu/gpu_buffer.h"
+#include "gpu/vulkan_error.h"
 
 #include <cstdlib>
+#include <optional>
+#include <vector>
 
 #include "gpu_test_support.h"
 
@@ -21,10 +24,11 @@ VkPhysicalDeviceMemoryProperties memoryOf(std::initializer_list<VkMemoryProperty
     return memory;
 }
 
+// The type a buffer takes where memory has room: the first of memoryTypesFor's.
 std::uint32_t typeFor(const VkPhysicalDeviceMemoryProperties& memory, MemoryUse use, std::uint32_t bits = ~0u) {
-    const std::optional<std::uint32_t> type = memoryTypeFor(memory, bits, use);
-    EXPECT_TRUE(type.has_value());
-    return type.value_or(~0u);
+    const std::vector<std::uint32_t> types = memoryTypesFor(memory, bits, use);
+    EXPECT_FALSE(types.empty());
+    return types.empty() ? ~0u : types.front();
 }
 
 // A discrete GPU as NVIDIA's drivers list its memory: its own memory, host memory, host memory
@@ -42,7 +46,40 @@ TEST(GpuBuffer, ADiscreteGpuKeepsTheKernelsBuffersInItsOwnMemory) {
     // A buffer that may not live in the GPU's memory takes the next best.
     EXPECT_EQ(typeFor(memory, MemoryUse::Upload, 0b0110), 1u);
     EXPECT_EQ(typeFor(memory, MemoryUse::HostShared, 0b0111), 1u);
-    EXPECT_FALSE(memoryTypeFor(memory, 0b0001, MemoryUse::Readback).has_value()) << "the host cannot map type 0";
+    EXPECT_TRUE(memoryTypesFor(memory, 0b0001, MemoryUse::Readback).empty()) << "the host cannot map type 0";
+}
+
+// Where the GPU's memory is full (other programs hold it, or the scene is larger than it), a
+// buffer takes the next type that has room: the kernels' buffers and the scene the mappable
+// window, then host memory; what the host must map never an unmappable type.
+TEST(GpuBuffer, BuffersFallBackToSlowerMemoryWhereTheGpusIsFull) {
+    const auto memory = memoryOf({kLocal, kVisible | kCoherent, kVisible | kCoherent | kCached, kLocal | kVisible | kCoherent});
+    using Types = std::vector<std::uint32_t>;
+    EXPECT_EQ(memoryTypesFor(memory, ~0u, MemoryUse::DeviceOnly), (Types{0, 3, 1, 2}));
+    EXPECT_EQ(memoryTypesFor(memory, ~0u, MemoryUse::Upload), (Types{0, 3, 1, 2}));
+    EXPECT_EQ(memoryTypesFor(memory, ~0u, MemoryUse::HostShared), (Types{3, 1, 2}));
+    EXPECT_EQ(memoryTypesFor(memory, ~0u, MemoryUse::Readback), (Types{2, 1, 3}));
+    EXPECT_EQ(memoryTypesFor(memory, ~0u, MemoryUse::Staging), (Types{1, 2, 3}));
+    EXPECT_EQ(memoryTypesFor(memory, 0b1001, MemoryUse::Upload), (Types{0, 3}));
+
+    // The allocation goes down the list past the types that are out of memory ...
+    std::vector<std::uint32_t> tried;
+    auto fullUntil = [&](std::uint32_t roomy) {
+        return [&tried, roomy](std::uint32_t type) {
+            tried.push_back(type);
+            return type == roomy ? VK_SUCCESS
+                                 : (type == 0 ? VK_ERROR_OUT_OF_DEVICE_MEMORY : VK_ERROR_OUT_OF_HOST_MEMORY);
+        };
+    };
+    const Types deviceOnly = memoryTypesFor(memory, ~0u, MemoryUse::DeviceOnly);
+    EXPECT_EQ(firstTypeWithRoom(deviceOnly, fullUntil(1)), std::optional<std::uint32_t>(1));
+    EXPECT_EQ(tried, (Types{0, 3, 1}));
+    // ... to none where every type is full ...
+    tried.clear();
+    EXPECT_EQ(firstTypeWithRoom(deviceOnly, fullUntil(7)), std::nullopt);
+    EXPECT_EQ(tried, deviceOnly);
+    // ... and stops at any other failure.
+    EXPECT_THROW(firstTypeWithRoom(deviceOnly, [](std::uint32_t) { return VK_ERROR_DEVICE_LOST; }), VulkanError);
 }
 
 // lavapipe has one memory type with every property, and an integrated GPU's memory is the host's:
