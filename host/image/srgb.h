@@ -19,6 +19,7 @@ inline float linearToSrgb(float c) {
 inline float displayedSrgb(float c) { return linearToSrgb(std::isfinite(c) ? std::clamp(c, 0.0f, 1.0f) : 0.0f); }
 
 // The 8-bit sRGB code a linear value is written as in a PNG: displayedSrgb rounded to nearest.
+// The definition; srgb8Code (srgb8_codes.h) gives the same codes without a pow.
 inline std::uint8_t linearToSrgb8(float c) { return std::uint8_t(std::lround(displayedSrgb(c) * 255.0f)); }
 
 }  // namespace vitrum

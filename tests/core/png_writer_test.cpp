@@ -74,7 +74,6 @@ TEST(PngWriter, DecodesToTheSrgbCodesOfEveryPixel) {
         for (int c = 0; c < 3; ++c) wrong += decoded[i * 3 + c] != linearToSrgb8(image.pixels[i][c]);
     stbi_image_free(decoded);
     EXPECT_EQ(wrong, 0);
-    EXPECT_EQ(linearToSrgb8(0.5f), 188);  // the NaN pixel's blue: linear 0.5 is sRGB 0.7354
 }
 
 TEST(PngWriter, ChunksAreAWellFormedSrgbRgbImage) {
