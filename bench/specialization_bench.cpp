@@ -145,6 +145,7 @@ int run(int argc, char** argv) {
              << " | " << general.stats.touchingProbes - special.stats.touchingProbes << " | "
              << (k.shadowRays ? "" : "shadow rays, ") << (k.absorption ? "" : "absorption, ")
              << (k.touchingProbe ? "" : "touching surfaces, ") << (k.opaqueContact ? "" : "glass on opaque surfaces, ")
+             << (k.coincidentOpaque ? "" : "coincident opaque surfaces, ")
              << (k.textures ? "" : "textures, ")
              << (k.materialModels >> 4 & 1u ? "" : "glass, ") << "other backgrounds |\n";
     }

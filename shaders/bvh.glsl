@@ -106,10 +106,16 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     // beyond a glass one, the opaque one is the hit. Kept in st.hitPosition and st.hitNormal.x,
     // which only shading reads.
     bool collectContact = kOpaqueContact && mode == kTraverseClosest && params.tuning.w != 0.0;
-    float reach = collectTouching || collectContact ? params.tuning.y : 0.0;  // boxes and candidates: up to tMax + reach
+    // Coincident opaque surfaces (render-model-decisions.md): the nearest opaque triangle hit from
+    // behind (the ray leaves through it) below the nearest hit so far plus e, ties as above. When
+    // the traversal is over and it lies within e of the nearest hit, it is the hit. Kept in
+    // st.hitGeometricNormal, which only shading reads.
+    bool collectLeaving = kCoincidentOpaque && mode == kTraverseClosest && params.pass.w != 0u;
+    float reach = collectTouching || collectContact || collectLeaving ? params.tuning.y : 0.0;  // boxes and candidates: up to tMax + reach
     uvec4 touchingObjects = st.touching;
     vec4 touchingT = st.probe;
     vec4 contact = st.hitPosition;  // t, triangle (bits), barycentrics
+    vec4 leaving = st.hitGeometricNormal;  // the same
     bool closestGlass = st.hitNormal.x != 0.0;
     uint current = kNoEntry;  // the entry to visit next, taken off the stack or kept from a visit
     if (top == kFreshTraversal) {
@@ -187,6 +193,11 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
                 if (collectContact && !glass &&
                     (hit.x < contact.x || (hit.x == contact.x && triangle < floatBitsToUint(contact.y))))
                     contact = vec4(hit.x, uintBitsToFloat(triangle), hit.yz);
+                if (collectLeaving && !glass &&
+                    (hit.x < leaving.x || (hit.x == leaving.x && triangle < floatBitsToUint(leaving.y)))) {
+                    vec3 edgeCross = ieeeCross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz);
+                    if (ieeeDot(direction, edgeCross) > 0.0) leaving = vec4(hit.x, uintBitsToFloat(triangle), hit.yz);
+                }
                 if (hit.x < tMax) {
                     tMax = hit.x;
                     closest = triangle;
@@ -210,7 +221,13 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     if (kResumable) gStack[min(top, kTraversalStackSize - 1u)] = current;
     if (!tracing) return true;
     if (!over && current != kNoEntry) top += 1u;
-    if (collectContact && over && closestGlass && contact.x < tMax + reach) {
+    // Both windows begin at the nearest hit: the opaque surface the ray leaves through first,
+    // then, under glass, the nearest opaque one.
+    if (collectLeaving && over && leaving.x < tMax + reach) {
+        tMax = leaving.x;
+        closest = floatBitsToUint(leaving.y);
+        barycentrics = leaving.zw;
+    } else if (collectContact && over && closestGlass && contact.x < tMax + reach) {
         tMax = contact.x;
         closest = floatBitsToUint(contact.y);
         barycentrics = contact.zw;
@@ -227,6 +244,7 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
         st.hitPosition = contact;
         st.hitNormal.x = closestGlass ? 1.0 : 0.0;
     }
+    if (collectLeaving) st.hitGeometricNormal = leaving;
     return over;
 }
 

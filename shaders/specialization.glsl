@@ -19,17 +19,18 @@ layout(constant_id = 8) const uint kMediumStackDepth = kMaxMediumDepth;  // 1..k
 layout(constant_id = 9) const uint kPendingRayCapacity = kRayStackSize;  // 0..kRayStackSize
 layout(constant_id = 10) const bool kSingleSample = false;  // one sample a pixel: its centre
 layout(constant_id = 11) const bool kOpaqueContact = true;  // glass may rest on an opaque surface
+layout(constant_id = 12) const bool kCoincidentOpaque = true;  // opaque surfaces of two objects may coincide
 // Not a scene feature but the kernel's role (shaders/suspend.glsl): the first dispatch of a tile
 // runs without it and gives up the pixels that need more than one dispatch; the resumable kernel
 // restarts them and suspends them between dispatches.
-layout(constant_id = 12) const bool kResumable = true;
+layout(constant_id = 13) const bool kResumable = true;
 // Not a scene feature but the device's guarantee: every subgroup is full, since the pipeline was
 // created with VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT (statistics.glsl).
-layout(constant_id = 13) const bool kFullSubgroups = false;
+layout(constant_id = 14) const bool kFullSubgroups = false;
 // Not a scene feature but the device's threads: on a device that runs on the CPU, the first
 // dispatch's subgroups take units of work until none is left, so that the CPU's threads share
 // the work however fast each runs (trace.comp's main). Only with kFullSubgroups.
-layout(constant_id = 14) const bool kPersistentSubgroups = false;
+layout(constant_id = 15) const bool kPersistentSubgroups = false;
 
 bool usesMaterial(uint model) { return ((kMaterialModels >> model) & 1u) != 0u; }
 

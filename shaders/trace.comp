@@ -144,8 +144,8 @@ vec3 mediumAttenuation(PendingRay r) {
     return count == 0u ? vec3(0.0) : objectMedium(r.media[count - 1u]).xyz;
 }
 
-// A closest-hit traversal of st.ray, with no touching candidates yet (touching.glsl) and no
-// opaque surface under glass (bvh.glsl's traverse).
+// A closest-hit traversal of st.ray, with no touching candidates yet (touching.glsl), no
+// opaque surface under glass and none the ray leaves through (bvh.glsl's traverse).
 void beginClosestTraversal() {
     if (kTouchingProbe) {
         st.touching = uvec4(0u);
@@ -155,6 +155,7 @@ void beginClosestTraversal() {
         st.hitPosition = vec4(kNoCandidate, uintBitsToFloat(kNoTriangle), 0.0, 0.0);
         st.hitNormal.x = 0.0;
     }
+    if (kCoincidentOpaque) st.hitGeometricNormal = vec4(kNoCandidate, uintBitsToFloat(kNoTriangle), 0.0, 0.0);
     beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 0.0, 3.0e38);
     st.control.x = kPhaseTrace;
 }

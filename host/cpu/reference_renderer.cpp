@@ -102,6 +102,7 @@ public:
           touchTolerance_(Real(features.touchingDistance)),
           touchingPossible_(features.touchingMediaPossible),
           opaqueContactPossible_(features.opaqueContactPossible),
+          coincidentOpaquePossible_(features.coincidentOpaquePossible),
           minWeight_(Real(scene.settings.minWeight)),
           offsetScale_(rayOffsetScale(scene.triangles)) {
         const Camera& c = scene.camera;
@@ -155,8 +156,7 @@ private:
         Ray<Real> ray{origin, d, Real(0), std::numeric_limits<Real>::max()};
         counters.logRay(ray, false);
         auto found = traceClosest<Real>(bvh_.nodes, vertices_, ray, &counters.traversal);
-        if (found && opaqueContactPossible_ && isGlass(found->triangle))
-            if (const auto opaque = opaqueUnderGlass(ray, found->t, counters)) found = opaque;
+        if (found) found = hitWhereSurfacesMeet(ray, *found, counters);
         const Color mu = mediumAttenuation(media);
         if (!found) {
             // Constant colour or environment map (render model, "Background").
@@ -414,20 +414,41 @@ private:
         return scene_.materials[scene_.triangles[bvh_.triangleOrder[triangle]].material].model == MaterialModel::Glass;
     }
 
-    // Glass resting on an opaque surface (render-model-decisions.md, "Glass on an opaque
-    // surface"): the nearest opaque triangle the ray hits within e beyond its glass hit at t
-    // (ties: the lower index), which is then the hit. Where the two coincide, as under a glass
-    // standing on a table, rounding alone would otherwise choose between them.
-    std::optional<TriangleHit<Real>> opaqueUnderGlass(const Ray<Real>& ray, Real t, TraceCounters& counters) const {
+    // Where surfaces meet, within e of the nearest hit along the ray (render-model-decisions.md,
+    // "Coincident opaque surfaces" and "Glass on an opaque surface"): the nearest opaque triangle
+    // the ray leaves through (hits from behind) is the hit; else, where the nearest hit is glass,
+    // the nearest opaque one (ties: the lower index). Where two surfaces coincide, as under a
+    // glass standing on a table or a box standing on another, rounding alone would otherwise
+    // choose between them. Looks only where the scene's analysis says something can be found.
+    TriangleHit<Real> hitWhereSurfacesMeet(const Ray<Real>& ray, const TriangleHit<Real>& nearest,
+                                           TraceCounters& counters) const {
+        const bool underGlass = opaqueContactPossible_ && isGlass(nearest.triangle);
+        if (!coincidentOpaquePossible_ && !underGlass) return nearest;
         thread_local std::vector<TriangleHit<Real>> hits;
         hits.clear();
+        const Real t = nearest.t;
         const Ray<Real> probe{ray.origin, ray.direction, std::max(Real(0), t - touchTolerance_), t + touchTolerance_};
         traceAll<Real>(bvh_.nodes, vertices_, probe, hits, &counters.traversal);
-        std::optional<TriangleHit<Real>> nearest;
-        for (const TriangleHit<Real>& h : hits)
-            if (!isGlass(h.triangle) && (!nearest || h.t < nearest->t || (h.t == nearest->t && h.triangle < nearest->triangle)))
-                nearest = h;
+        auto nearer = [](const TriangleHit<Real>& h, const std::optional<TriangleHit<Real>>& than) {
+            return !than || h.t < than->t || (h.t == than->t && h.triangle < than->triangle);
+        };
+        std::optional<TriangleHit<Real>> opaque, leaving;
+        for (const TriangleHit<Real>& h : hits) {
+            if (isGlass(h.triangle)) continue;
+            if (nearer(h, opaque)) opaque = h;
+            if (coincidentOpaquePossible_ && nearer(h, leaving) && leavesThrough(h.triangle, ray.direction)) leaving = h;
+        }
+        if (leaving) return *leaving;
+        if (underGlass && opaque) return *opaque;
         return nearest;
+    }
+
+    // Whether a ray along d meets the triangle from behind (its winding's normal points along d):
+    // it leaves through it. The GPU's test (bvh.glsl) has the same operations.
+    bool leavesThrough(std::uint32_t triangle, const Vec3& d) const {
+        const gpu::TriangleVertices& tv = vertices_[triangle];
+        const Vec3 v0(tv.v0);
+        return glm::dot(d, glm::cross(Vec3(tv.v1) - v0, Vec3(tv.v2) - v0)) > Real(0);
     }
 
     // IOR of the medium a ray is in: the innermost object's, or the scene's air.
@@ -452,6 +473,7 @@ private:
     Real touchTolerance_;    // surfaces closer than this along a ray touch
     bool touchingPossible_;  // glass surfaces of two objects close enough to touch (scene_features.h)
     bool opaqueContactPossible_;  // glass close enough to an opaque surface to rest on it (scene_features.h)
+    bool coincidentOpaquePossible_;  // opaque surfaces of two objects close enough to coincide (scene_features.h)
     Real minWeight_;
     RayOffsetScale offsetScale_;  // Waechter and Binder's absolute offsets, scaled to the scene
     Vec3 cameraFrom_, cameraX_, cameraY_, cameraZ_;

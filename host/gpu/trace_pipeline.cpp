@@ -40,7 +40,7 @@ TraceKernelConstants traceKernelConstants(const TraceSpecialization& specializat
     if (persistent && (resumable || !fullSubgroups))
         throw std::logic_error("only the first dispatch's kernel in full subgroups can be persistent");
     const auto sceneConstants = specialization.constants();
-    // Then kResumable (constant_id 12), kFullSubgroups (13) and kPersistentSubgroups (14).
+    // Then kResumable (constant_id 13), kFullSubgroups (14) and kPersistentSubgroups (15).
     TraceKernelConstants constants;
     std::copy(sceneConstants.begin(), sceneConstants.end(), constants.begin());
     constants[sceneConstants.size()] = resumable ? 1u : 0u;

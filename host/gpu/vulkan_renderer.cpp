@@ -148,6 +148,9 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     // Whether closest-hit traversals look for an opaque surface within that distance beyond a
     // glass hit (glass resting on a table): the analysis's answer, in both kernels.
     p.tuning.w = stats.features.opaqueContactPossible ? 1.0f : 0.0f;
+    // Whether they also look for the opaque surface the ray leaves through within that distance
+    // of the nearest hit (a box standing on another): the analysis's answer, in both kernels.
+    p.pass.w = stats.features.coincidentOpaquePossible ? 1u : 0u;
     // Every primary ray's medium stack: the media around the camera, or where the camera lies on a
     // surface, those on the ray's side of it (render/camera_surface.h).
     const std::vector<std::uint32_t>& cameraMedia = stats.features.cameraMedia;

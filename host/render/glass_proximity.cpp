@@ -25,10 +25,11 @@ void project(const glm::dvec3 p[3], const glm::dvec3& axis, double& lo, double& 
     hi = std::max({d0, d1, d2});
 }
 
-// The triangles of a group that lie within `distance` of another group's box: no triangle of
-// another group can be that close to the others.
-template <class GroupOf>
-std::vector<NearTriangle> trianglesNearOtherGroups(const Scene& scene, double distance, GroupOf groupOf) {
+// The triangles of a group that lie within `distance` of the box of another group that
+// `pairMatters` with it: no triangle of such a group can be that close to the others.
+template <class GroupOf, class PairMatters>
+std::vector<NearTriangle> trianglesNearOtherGroups(const Scene& scene, double distance, GroupOf groupOf,
+                                                   PairMatters pairMatters) {
     std::vector<NearTriangle> grouped;
     std::map<std::uint32_t, DoubleBox> groupBoxes;
     for (const Triangle& t : scene.triangles) {
@@ -48,7 +49,8 @@ std::vector<NearTriangle> trianglesNearOtherGroups(const Scene& scene, double di
     std::map<std::uint32_t, std::vector<DoubleBox>> neighbours;
     for (const auto& [group, box] : groupBoxes)
         for (const auto& [other, otherBox] : groupBoxes)
-            if (other != group && box.within(otherBox, distance)) neighbours[group].push_back(otherBox);
+            if (other != group && pairMatters(group, other) && box.within(otherBox, distance))
+                neighbours[group].push_back(otherBox);
     std::vector<NearTriangle> near;
     for (const NearTriangle& g : grouped) {
         const auto found = neighbours.find(g.group);
@@ -108,10 +110,12 @@ namespace {
 
 // Two triangles of different groups (groupOf: a group, or none for a triangle left out) within
 // `distance` of each other.
-template <class GroupOf>
-CloseTriangles findCloseTriangles(const Scene& scene, double distance, std::uint64_t maxPairs, GroupOf groupOf) {
+// Pairs of triangles of two groups for which `pairMatters(group, otherGroup)`.
+template <class GroupOf, class PairMatters>
+CloseTriangles findCloseTriangles(const Scene& scene, double distance, std::uint64_t maxPairs, GroupOf groupOf,
+                                  PairMatters pairMatters) {
     CloseTriangles result;
-    const std::vector<NearTriangle> near = trianglesNearOtherGroups(scene, distance, groupOf);
+    const std::vector<NearTriangle> near = trianglesNearOtherGroups(scene, distance, groupOf, pairMatters);
     if (near.empty()) return result;
 
     // A uniform grid with cells about twice as large as a typical triangle (twice the median of
@@ -179,7 +183,9 @@ CloseTriangles findCloseTriangles(const Scene& scene, double distance, std::uint
     auto search = [&] {
         for (std::uint32_t i : large)
             for (std::uint32_t j = 0; j < near.size(); ++j)
-                if (near[i].group != near[j].group && mayTouch(near[i], near[j])) return true;
+                if (near[i].group != near[j].group && pairMatters(near[i].group, near[j].group) &&
+                    mayTouch(near[i], near[j]))
+                    return true;
         std::sort(entries.begin(), entries.end());
         for (std::size_t first = 0; first < entries.size();) {
             std::size_t end = first;
@@ -190,7 +196,8 @@ CloseTriangles findCloseTriangles(const Scene& scene, double distance, std::uint
                 while (runEnd < end && entries[runEnd].group == entries[run].group) ++runEnd;
                 for (std::size_t i = run; i < runEnd; ++i)
                     for (std::size_t j = runEnd; j < end; ++j)
-                        if (pairedHere(entries[i].cell, entries[i].triangle, entries[j].triangle) &&
+                        if (pairMatters(entries[i].group, entries[j].group) &&
+                            pairedHere(entries[i].cell, entries[i].triangle, entries[j].triangle) &&
                             mayTouch(near[entries[i].triangle], near[entries[j].triangle]))
                             return true;
                 run = runEnd;
@@ -203,19 +210,38 @@ CloseTriangles findCloseTriangles(const Scene& scene, double distance, std::uint
     return result;
 }
 
+bool anyPair(std::uint32_t, std::uint32_t) { return true; }
+
 }  // namespace
 
 CloseTriangles findCloseGlassTriangles(const Scene& scene, double distance, std::uint64_t maxPairs) {
-    return findCloseTriangles(scene, distance, maxPairs, [&](const Triangle& t) -> std::optional<std::uint32_t> {
-        if (scene.materials[t.material].model != MaterialModel::Glass) return std::nullopt;
-        return t.object;
-    });
+    return findCloseTriangles(
+        scene, distance, maxPairs,
+        [&](const Triangle& t) -> std::optional<std::uint32_t> {
+            if (scene.materials[t.material].model != MaterialModel::Glass) return std::nullopt;
+            return t.object;
+        },
+        anyPair);
 }
 
 CloseTriangles findGlassNearOpaque(const Scene& scene, double distance, std::uint64_t maxPairs) {
-    return findCloseTriangles(scene, distance, maxPairs, [&](const Triangle& t) -> std::optional<std::uint32_t> {
-        return scene.materials[t.material].model == MaterialModel::Glass ? 0u : 1u;
-    });
+    return findCloseTriangles(
+        scene, distance, maxPairs,
+        [&](const Triangle& t) -> std::optional<std::uint32_t> {
+            return scene.materials[t.material].model == MaterialModel::Glass ? 0u : 1u;
+        },
+        anyPair);
+}
+
+CloseTriangles findCloseOpaqueTriangles(const Scene& scene, double distance, const std::set<std::uint32_t>& metFromBehind,
+                                        std::uint64_t maxPairs) {
+    return findCloseTriangles(
+        scene, distance, maxPairs,
+        [&](const Triangle& t) -> std::optional<std::uint32_t> {
+            if (scene.materials[t.material].model == MaterialModel::Glass) return std::nullopt;
+            return t.object;
+        },
+        [&](std::uint32_t a, std::uint32_t b) { return metFromBehind.count(a) > 0 || metFromBehind.count(b) > 0; });
 }
 
 }  // namespace vitrum

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <set>
 
 #include "scene/scene.h"
 
@@ -34,6 +35,13 @@ CloseTriangles findCloseGlassTriangles(const Scene& scene, double distance,
 // Looks for a glass triangle and an opaque one (of any objects, one and the same included) that
 // lie within `distance` of each other; sound and complete as findCloseGlassTriangles.
 CloseTriangles findGlassNearOpaque(const Scene& scene, double distance, std::uint64_t maxPairs = kMaxExaminedPairs);
+
+// Looks for two opaque triangles of different objects, at least one of them in `metFromBehind`,
+// that lie within `distance` of each other (surfaces that may coincide where a ray can come from
+// behind one of them: a box standing on another, seen from inside; render-model-decisions.md,
+// "Coincident opaque surfaces"); sound and complete as findCloseGlassTriangles.
+CloseTriangles findCloseOpaqueTriangles(const Scene& scene, double distance, const std::set<std::uint32_t>& metFromBehind,
+                                        std::uint64_t maxPairs = kMaxExaminedPairs);
 
 // Whether triangles a and b are farther apart than `distance`, by the separating-axis test:
 // some axis along which their projections leave a gap wider than `distance`, among axes that

@@ -63,10 +63,14 @@ Edge reversed(const Edge& e) {
 
 }  // namespace
 
-std::set<std::uint32_t> openGlassObjects(const Scene& scene) {
+namespace {
+
+// The objects whose triangles that `counts` are not a closed, consistently wound mesh.
+template <class Counts>
+std::set<std::uint32_t> openObjects(const Scene& scene, Counts counts) {
     std::map<std::uint32_t, std::unordered_map<Edge, int, EdgeHash>> edges;
     for (const Triangle& t : scene.triangles) {
-        if (scene.materials[t.material].model != MaterialModel::Glass) continue;
+        if (!counts(t)) continue;
         auto& objectEdges = edges[t.object];
         for (int i = 0; i < 3; ++i) objectEdges[edge(t.position[i], t.position[(i + 1) % 3])] += 1;
     }
@@ -83,6 +87,38 @@ std::set<std::uint32_t> openGlassObjects(const Scene& scene) {
         if (!closed) open.insert(objectAndEdges.first);
     }
     return open;
+}
+
+}  // namespace
+
+std::set<std::uint32_t> openGlassObjects(const Scene& scene) {
+    return openObjects(scene, [&](const Triangle& t) { return scene.materials[t.material].model == MaterialModel::Glass; });
+}
+
+std::set<std::uint32_t> opaqueObjectsMetFromBehind(const Scene& scene, const std::vector<glm::dvec3>& rayStarts) {
+    auto isGlass = [&](const Triangle& t) { return scene.materials[t.material].model == MaterialModel::Glass; };
+    std::map<std::uint32_t, std::vector<const Triangle*>> opaque;
+    std::set<std::uint32_t> withGlass;
+    for (const Triangle& t : scene.triangles) {
+        if (isGlass(t)) withGlass.insert(t.object);
+        else opaque[t.object].push_back(&t);
+    }
+    const std::set<std::uint32_t> open = openObjects(scene, [&](const Triangle& t) { return !isGlass(t); });
+    std::set<std::uint32_t> metFromBehind;
+    for (const auto& [object, triangles] : opaque) {
+        // Six times the enclosed volume, positive where the mesh is wound counterclockwise seen
+        // from outside (its normals point out); taken about a corner, which keeps it exact enough
+        // far from the origin.
+        const glm::dvec3 corner(triangles.front()->position[0]);
+        double volume = 0.0;
+        for (const Triangle* t : triangles)
+            volume += glm::dot(glm::dvec3(t->position[0]) - corner,
+                               glm::cross(glm::dvec3(t->position[1]) - corner, glm::dvec3(t->position[2]) - corner));
+        bool met = withGlass.count(object) || open.count(object) || !(volume > 0.0);
+        for (const glm::dvec3& start : rayStarts) met = met || windingNumber(triangles, start) > 0.5;
+        if (met) metFromBehind.insert(object);
+    }
+    return metFromBehind;
 }
 
 double sceneDiagonal(const std::vector<Triangle>& triangles) {
@@ -141,6 +177,10 @@ SceneFeatures analyseScene(const Scene& scene) {
     f.cameraMediaBehind = f.cameraSurface.triangles == 0
                               ? f.cameraMedia
                               : cameraMedia(scene, open, glm::dvec3(offsetRayOrigin(from, -normal, offsets)));
+    const std::vector<glm::dvec3> primaryStarts = {glm::dvec3(offsetRayOrigin(from, normal, offsets)),
+                                                   glm::dvec3(offsetRayOrigin(from, -normal, offsets))};
+    f.coincidentOpaquePossible =
+        findCloseOpaqueTriangles(scene, margin, opaqueObjectsMetFromBehind(scene, primaryStarts)).found;
     if (f.cameraSurface.otherPlanes)
         warn(
             "the camera lies where surfaces meet at an angle (an edge or a corner): primary rays start off one "
@@ -175,6 +215,7 @@ std::vector<std::string> SceneFeatures::describe() const {
         std::string("absorbing media (Beer-Lambert): ") + yesNo(absorbingMedia),
         std::string("touching glass surfaces possible: ") + yesNo(touchingMediaPossible),
         std::string("glass resting on opaque surfaces possible: ") + yesNo(opaqueContactPossible),
+        std::string("coincident opaque surfaces of two objects possible: ") + yesNo(coincidentOpaquePossible),
         "medium stack depth needed: " + std::to_string(mediumStackDepth),
         std::string("reflected rays: ") + yesNo(reflection),
         "pending-ray stack needed: " + std::to_string(rayStackDepth),
@@ -194,6 +235,7 @@ nlohmann::json toJson(const SceneFeatures& f) {
         {"absorbing_media", f.absorbingMedia},
         {"touching_media_possible", f.touchingMediaPossible},
         {"opaque_contact_possible", f.opaqueContactPossible},
+        {"coincident_opaque_possible", f.coincidentOpaquePossible},
         {"medium_stack_depth", f.mediumStackDepth},
         {"camera_media", f.cameraMedia},
         {"camera_surface_triangles", f.cameraSurface.triangles},

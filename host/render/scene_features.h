@@ -33,6 +33,13 @@ struct SceneFeatures {
     // where both backends take the opaque one (glass resting on a table; render-model-decisions.md,
     // "Glass on an opaque surface"), so otherwise neither looks for it.
     bool opaqueContactPossible = false;
+    // Opaque triangles of two different objects that may lie within twice the touching distance
+    // of each other, one of the two objects one that a ray may meet from behind
+    // (opaqueObjectsMetFromBehind): only then can a ray meet, within the touching distance, an
+    // opaque surface from behind and another from the front, where both backends take the one it
+    // leaves through (a box standing on another, seen from inside; render-model-decisions.md,
+    // "Coincident opaque surfaces").
+    bool coincidentOpaquePossible = false;
     bool reflection = false;             // opaque dielectrics, mirrors or glass spawn reflected rays
     bool shadowRays = false;             // lights and materials that use them (Lambert, Phong)
     bool textures = false;               // some material samples map_Kd
@@ -75,6 +82,13 @@ SceneFeatures analyseScene(const Scene& scene);
 // The glass objects whose glass triangles are not a closed, consistently wound mesh: some
 // directed edge does not appear exactly once with its reverse exactly once.
 std::set<std::uint32_t> openGlassObjects(const Scene& scene);
+
+// The objects with opaque triangles that a ray may meet from behind (render-model-decisions.md,
+// "Coincident opaque surfaces"): those whose opaque triangles are not a closed, consistently wound
+// mesh with outward normals (an open sheet, a mesh wound inward), those that also have glass
+// triangles (rays come in through them), and those around one of `rayStarts` (where primary rays
+// start). A ray meets the opaque triangles of any other object from the front only.
+std::set<std::uint32_t> opaqueObjectsMetFromBehind(const Scene& scene, const std::vector<glm::dvec3>& rayStarts);
 
 // Length of the diagonal of the box around every triangle (0 for an empty scene).
 double sceneDiagonal(const std::vector<Triangle>& triangles);

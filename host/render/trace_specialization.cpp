@@ -24,6 +24,7 @@ TraceSpecialization TraceSpecialization::forScene(const Scene& scene, const Scen
     s.absorption = f.absorbingMedia;
     s.touchingProbe = f.touchingMediaPossible;
     s.opaqueContact = f.opaqueContactPossible;
+    s.coincidentOpaque = f.coincidentOpaquePossible;
     s.textures = f.textures;
     s.backgroundKind = std::uint32_t(f.background);
     s.fresnelModel = std::uint32_t(scene.settings.fresnel);
@@ -48,7 +49,8 @@ std::array<std::uint32_t, TraceSpecialization::kConstantCount> TraceSpecializati
             mediumStackDepth,
             pendingRayCapacity,
             singleSample ? 1u : 0u,
-            opaqueContact ? 1u : 0u};
+            opaqueContact ? 1u : 0u,
+            coincidentOpaque ? 1u : 0u};
 }
 
 namespace {
@@ -77,6 +79,7 @@ std::vector<std::string> TraceSpecialization::describe() const {
         std::string("Beer-Lambert absorption: ") + onOff(absorption),
         std::string("touching probe: ") + onOff(touchingProbe),
         std::string("glass on opaque surfaces: ") + onOff(opaqueContact),
+        std::string("coincident opaque surfaces: ") + onOff(coincidentOpaque),
         std::string("textures: ") + onOff(textures),
         "background: " + kindName(backgroundKind, backgroundKindName),
         "fresnel: " + kindName(fresnelModel, fresnelModelName),
@@ -95,6 +98,7 @@ nlohmann::json toJson(const TraceSpecialization& s) {
         {"absorption", s.absorption},
         {"touching_probe", s.touchingProbe},
         {"opaque_contact", s.opaqueContact},
+        {"coincident_opaque", s.coincidentOpaque},
         {"textures", s.textures},
         {"background", kindName(s.backgroundKind, backgroundKindName)},
         {"fresnel", kindName(s.fresnelModel, fresnelModelName)},

@@ -27,6 +27,7 @@ struct TraceSpecialization {
     bool absorption = true;
     bool touchingProbe = true;
     bool opaqueContact = true;  // glass may rest on an opaque surface (SceneFeatures::opaqueContactPossible)
+    bool coincidentOpaque = true;  // opaque surfaces of two objects may coincide (coincidentOpaquePossible)
     bool textures = true;
     std::uint32_t backgroundKind = kAnyKind;  // BackgroundKind or kAnyKind
     std::uint32_t fresnelModel = kAnyKind;    // FresnelModel or kAnyKind
@@ -39,7 +40,7 @@ struct TraceSpecialization {
     static TraceSpecialization forScene(const Scene& scene, const SceneFeatures& features);
 
     // The constants in constant_id order, as VkSpecializationInfo reads them.
-    static constexpr std::size_t kConstantCount = 12;
+    static constexpr std::size_t kConstantCount = 13;
     std::array<std::uint32_t, kConstantCount> constants() const;
     std::vector<std::string> describe() const;  // one line a setting, for `vitrum info`
 };

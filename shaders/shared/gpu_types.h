@@ -140,7 +140,9 @@ struct RenderParams {
     uvec4 counts;      // light count, fresnel model, texture count, iteration budget per SIMD group and dispatch
     uvec4 tile;        // tile origin x, tile origin y, tile width, tile height
     uvec4 pass;        // x = media around the camera (cameraMedia); y = columns of the stratified
-                       // sample grid (rows = spp / columns); z = media of cameraMediaBehind
+                       // sample grid (rows = spp / columns); z = media of cameraMediaBehind; w = 1
+                       // when opaque surfaces of two objects may coincide
+                       // (SceneFeatures::coincidentOpaquePossible), else 0
     vec4 tuning;       // x = min weight, y = distance within which surfaces touch (1e-5 x scene
                        // diagonal), z = 1 when the scene has two or more glass objects (so
                        // surfaces of different objects can touch), else 0; w = 1 when glass may

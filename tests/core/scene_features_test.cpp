@@ -2,6 +2,8 @@
 // kernel specialization made from it.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "render/scene_features.h"
 #include "render/trace_specialization.h"
 #include "scene/scene_loader.h"
@@ -82,6 +84,57 @@ TEST(SceneFeatures, GlassRestingOnAnOpaqueSurfaceNeedsTheContactCheck) {
     // touches its floor.
     EXPECT_FALSE(featuresOf("scenes/water_glass.json").opaqueContactPossible);
     EXPECT_TRUE(featuresOf("scenes/demo.json").opaqueContactPossible);
+}
+
+TEST(SceneFeatures, OpaqueObjectsStandingOnEachOtherNeedTheCoincidenceCheckWhereARayCanComeFromBehind) {
+    // An opaque box standing on another, with a glass top that lets rays in: on it, or with a gap
+    // far below the touching distance (here ~6e-5; the analysis looks twice as far), a ray inside
+    // the upper box can meet its bottom from behind where the lower box's top coincides; with a
+    // gap of 1e-3 it cannot.
+    Material lambert;
+    lambert.model = MaterialModel::Lambert;
+    auto stacked = [&](float gap) {
+        Scene scene = glassScene();
+        scene.materials.push_back(lambert);
+        scene.camera.from = {1, 1, 10};
+        addGlassBox(scene, {0, 0, gap}, {2, 2, 2});
+        addGlassBox(scene, {-1, -1, -1}, {3, 3, 0});
+        for (Triangle& t : scene.triangles) t.material = t.object == 0u && t.position[0].z == 2.0f ? 0u : 1u;
+        return scene;
+    };
+    for (const auto& [gap, coincident] : {std::pair{0.0f, true}, std::pair{1e-6f, true}, std::pair{1e-3f, false}}) {
+        Scene scene = stacked(gap);
+        EXPECT_EQ(analyseScene(scene).coincidentOpaquePossible, coincident) << "gap " << gap;
+        EXPECT_EQ(opaqueObjectsMetFromBehind(scene, {glm::dvec3(1, 1, 10)}), (std::set<std::uint32_t>{0u}));
+        // Faces of one object never count: every mesh's neighbouring triangles touch.
+        for (Triangle& t : scene.triangles) t.object = 0;
+        EXPECT_FALSE(analyseScene(scene).coincidentOpaquePossible) << "one object, gap " << gap;
+    }
+    // Both boxes wholly opaque, closed and wound outward: no ray meets either from behind, so
+    // nothing is looked for; but a camera inside one of them, or the upper box turned inside out,
+    // lets rays meet it from behind.
+    Scene closed = stacked(0.0f);
+    for (Triangle& t : closed.triangles) t.material = 1;
+    EXPECT_TRUE(opaqueObjectsMetFromBehind(closed, {glm::dvec3(1, 1, 10)}).empty());
+    EXPECT_FALSE(analyseScene(closed).coincidentOpaquePossible);
+    EXPECT_EQ(opaqueObjectsMetFromBehind(closed, {glm::dvec3(1, 1, 1)}), (std::set<std::uint32_t>{0u}));
+    closed.camera.from = {1, 1, 1};
+    EXPECT_TRUE(analyseScene(closed).coincidentOpaquePossible);
+    closed.camera.from = {1, 1, 10};
+    for (Triangle& t : closed.triangles)
+        if (t.object == 0u) std::swap(t.position[1], t.position[2]);
+    EXPECT_EQ(opaqueObjectsMetFromBehind(closed, {glm::dvec3(1, 1, 10)}), (std::set<std::uint32_t>{0u}));
+    EXPECT_TRUE(analyseScene(closed).coincidentOpaquePossible);
+    // The upper box open (no top): a ray can come in.
+    Scene open = stacked(0.0f);
+    std::erase_if(open.triangles, [](const Triangle& t) { return t.object == 0u && t.position[0].z == 2.0f; });
+    EXPECT_EQ(opaqueObjectsMetFromBehind(open, {glm::dvec3(1, 1, 10)}), (std::set<std::uint32_t>{0u}));
+    EXPECT_TRUE(analyseScene(open).coincidentOpaquePossible);
+
+    // The project's scenes: the demo's plastic sphere rests on its floor, both closed; the
+    // course's Cornell box has walls that are open sheets meeting one another.
+    EXPECT_FALSE(featuresOf("scenes/demo.json").coincidentOpaquePossible);
+    EXPECT_TRUE(featuresOf("scenes/course/cornell_box2.json").coincidentOpaquePossible);
 }
 
 TEST(SceneFeatures, MediumStackDepthCountsOverlappingBoxes) {
@@ -177,6 +230,7 @@ TEST(TraceSpecialization, LambertSceneGetsAKernelWithoutGlassOrStacks) {
     EXPECT_EQ(c[8], 1u);  // medium stack depth
     EXPECT_EQ(c[9], 0u);  // pending rays
     EXPECT_EQ(c[11], 0u);  // glass on opaque surfaces
+    EXPECT_EQ(c[12], 0u);  // coincident opaque surfaces
 }
 
 }  // namespace
