@@ -45,12 +45,23 @@ std::vector<NearTriangle> trianglesNearOtherGroups(const Scene& scene, double di
         groupBoxes[g.group].grow(g.bounds.max);
         grouped.push_back(g);
     }
-    // Each group's neighbours: the other groups whose boxes come within the distance of its own.
+    // Each group's neighbours: the other groups whose boxes come within the distance of its own,
+    // found by sweeping the boxes in order of their lowest x (a scene of many objects would take
+    // each pair of them otherwise: 20,000 objects, 2.6 s).
+    std::vector<std::pair<std::uint32_t, DoubleBox>> sorted(groupBoxes.begin(), groupBoxes.end());
+    // A NaN (no loaded scene has one) sorts first, so that the order stays strict and weak.
+    auto lowestX = [](const DoubleBox& box) { return std::isnan(box.min.x) ? -HUGE_VAL : box.min.x; };
+    std::sort(sorted.begin(), sorted.end(), [&](const auto& a, const auto& b) { return lowestX(a.second) < lowestX(b.second); });
     std::map<std::uint32_t, std::vector<DoubleBox>> neighbours;
-    for (const auto& [group, box] : groupBoxes)
-        for (const auto& [other, otherBox] : groupBoxes)
-            if (other != group && pairMatters(group, other) && box.within(otherBox, distance))
+    for (std::size_t i = 0; i < sorted.size(); ++i)
+        for (std::size_t j = i + 1; j < sorted.size() && sorted[j].second.min.x <= sorted[i].second.max.x + distance; ++j) {
+            const auto& [group, box] = sorted[i];
+            const auto& [other, otherBox] = sorted[j];
+            if (pairMatters(group, other) && box.within(otherBox, distance)) {
                 neighbours[group].push_back(otherBox);
+                neighbours[other].push_back(box);
+            }
+        }
     std::vector<NearTriangle> near;
     for (const NearTriangle& g : grouped) {
         const auto found = neighbours.find(g.group);
@@ -110,7 +121,8 @@ namespace {
 
 // Two triangles of different groups (groupOf: a group, or none for a triangle left out) within
 // `distance` of each other.
-// Pairs of triangles of two groups for which `pairMatters(group, otherGroup)`.
+// Pairs of triangles of two groups for which `pairMatters(group, otherGroup)`, which must be
+// symmetric.
 template <class GroupOf, class PairMatters>
 CloseTriangles findCloseTriangles(const Scene& scene, double distance, std::uint64_t maxPairs, GroupOf groupOf,
                                   PairMatters pairMatters) {
