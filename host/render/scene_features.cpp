@@ -155,13 +155,12 @@ SceneFeatures analyseScene(const Scene& scene) {
     f.touchingDistance = kTouchingTolerance * sceneDiagonal(scene.triangles);
     // Boxes grown by twice the touching distance: a probe reaches that far on either side of a hit.
     const double margin = 2.0 * f.touchingDistance;
-    std::uint32_t mostOverlaps = 0;
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-        std::uint32_t overlaps = 0;
-        for (std::size_t j = 0; j < boxes.size(); ++j)
-            if (i != j && boxes[i].within(boxes[j], margin)) ++overlaps;
-        mostOverlaps = std::max(mostOverlaps, overlaps);
-    }
+    std::vector<std::uint32_t> overlaps(boxes.size(), 0);
+    forEachBoxPairWithin(boxes, margin, [&](std::size_t i, std::size_t j) {
+        ++overlaps[i];
+        ++overlaps[j];
+    });
+    const std::uint32_t mostOverlaps = overlaps.empty() ? 0 : *std::max_element(overlaps.begin(), overlaps.end());
     // Overlapping boxes say that two objects may touch or one lie in the other; only the
     // triangles tell which (a bubble in a block is nested, never touching).
     f.touchingMediaPossible = mostOverlaps > 0 && findCloseGlassTriangles(scene, margin).found;

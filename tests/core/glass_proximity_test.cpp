@@ -5,8 +5,11 @@
 
 #include <cmath>
 #include <random>
+#include <set>
+#include <utility>
 
 #include "glass_scenes.h"
+#include "render/double_box.h"
 #include "render/glass_proximity.h"
 #include "scene/scene_loader.h"
 
@@ -22,6 +25,41 @@ void expectApartBelowTheGap(const Corners& a, const Corners& b, double gap) {
     EXPECT_FALSE(trianglesApart(a, b, gap * 1.01)) << "gap " << gap;
     EXPECT_TRUE(trianglesApart(b, a, gap * 0.99)) << "the pair the other way round";
     EXPECT_FALSE(trianglesApart(b, a, gap * 1.01)) << "the pair the other way round";
+}
+
+TEST(GlassProximity, TheSweepOverBoxesFindsEveryPairThatComparingAllPairsFinds) {
+    // 600 boxes of random sizes in a 10-wide cube, some long and thin along x (so that a box's x
+    // range covers many others'), some flat, two equal: the pairs within the margin are exactly
+    // those that comparing every two finds, each once, the lower index first.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> position(0.0, 10.0), size(0.0, 0.6);
+    std::vector<DoubleBox> boxes;
+    for (int i = 0; i < 600; ++i) {
+        const glm::dvec3 lo(position(rng), position(rng), position(rng));
+        glm::dvec3 extent(size(rng), size(rng), size(rng));
+        if (i % 50 == 0) extent.x = 8.0;
+        if (i % 7 == 0) extent.z = 0.0;
+        DoubleBox box;
+        box.grow(lo);
+        box.grow(lo + extent);
+        boxes.push_back(box);
+    }
+    boxes.push_back(boxes[10]);
+    for (const double margin : {0.0, 0.05, 0.5}) {
+        std::set<std::pair<std::size_t, std::size_t>> expected, found;
+        for (std::size_t i = 0; i < boxes.size(); ++i)
+            for (std::size_t j = i + 1; j < boxes.size(); ++j)
+                if (boxes[i].within(boxes[j], margin)) expected.insert({i, j});
+        std::size_t calls = 0;
+        forEachBoxPairWithin(boxes, margin, [&](std::size_t i, std::size_t j) {
+            ++calls;
+            EXPECT_LT(i, j);
+            found.insert({i, j});
+        });
+        EXPECT_EQ(found, expected) << "margin " << margin;
+        EXPECT_EQ(calls, expected.size()) << "margin " << margin;
+        EXPECT_GT(expected.size(), 30u);  // the boxes do meet one another (measured: 40 to 61 and more)
+    }
 }
 
 TEST(GlassProximity, ParallelTrianglesAreApartByTheirPlanesDistance) {
