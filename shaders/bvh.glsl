@@ -111,7 +111,8 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     // the traversal is over and it lies within e of the nearest hit, it is the hit. Kept in
     // st.hitGeometricNormal, which only shading reads.
     bool collectLeaving = kCoincidentOpaque && mode == kTraverseClosest && params.pass.w != 0u;
-    float reach = collectTouching || collectContact || collectLeaving ? params.tuning.y : 0.0;  // boxes and candidates: up to tMax + reach
+    // Boxes and candidates are tested up to tMax + reach.
+    float reach = collectTouching || collectContact || collectLeaving ? params.tuning.y : 0.0;
     uvec4 touchingObjects = st.touching;
     vec4 touchingT = st.probe;
     vec4 contact = st.hitPosition;  // t, triangle (bits), barycentrics

@@ -24,9 +24,9 @@ layout(std430, set = 0, binding = 4) writeonly buffer Hits { vec4 hits[]; };
 #include "geometry_texels.glsl"  // fetchVec4, loadTraversalNode, loadTriangle, as trace.comp reads them
 
 // What bvh.glsl reads of trace.comp: the features (a shadow ray ends at its first hit; no
-// touching probe, no glass on opaque surfaces and no coincident opaque ones; full subgroups, which the bench asks for when
-// it creates the pipeline; a traversal that is never resumed), the parameters, the state and the
-// counters.
+// touching probe, no glass on opaque surfaces and no coincident opaque ones; full subgroups,
+// which the bench asks for when it creates the pipeline; a traversal that is never resumed), the
+// parameters, the state and the counters.
 const bool kShadowRays = true;
 const bool kTouchingProbe = false;
 const bool kOpaqueContact = false;

@@ -436,7 +436,8 @@ private:
         for (const TriangleHit<Real>& h : hits) {
             if (isGlass(h.triangle)) continue;
             if (nearer(h, opaque)) opaque = h;
-            if (coincidentOpaquePossible_ && nearer(h, leaving) && leavesThrough(h.triangle, ray.direction)) leaving = h;
+            if (coincidentOpaquePossible_ && nearer(h, leaving) && leavesThrough(h.triangle, ray.direction))
+                leaving = h;
         }
         if (leaving) return *leaving;
         if (underGlass && opaque) return *opaque;

@@ -241,8 +241,8 @@ CloseTriangles findGlassNearOpaque(const Scene& scene, double distance, std::uin
         anyPair);
 }
 
-CloseTriangles findCloseOpaqueTriangles(const Scene& scene, double distance, const std::set<std::uint32_t>& metFromBehind,
-                                        std::uint64_t maxPairs) {
+CloseTriangles findCloseOpaqueTriangles(const Scene& scene, double distance,
+                                        const std::set<std::uint32_t>& metFromBehind, std::uint64_t maxPairs) {
     return findCloseTriangles(
         scene, distance, maxPairs,
         [&](const Triangle& t) -> std::optional<std::uint32_t> {

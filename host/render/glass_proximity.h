@@ -40,7 +40,8 @@ CloseTriangles findGlassNearOpaque(const Scene& scene, double distance, std::uin
 // that lie within `distance` of each other (surfaces that may coincide where a ray can come from
 // behind one of them: a box standing on another, seen from inside; render-model-decisions.md,
 // "Coincident opaque surfaces"); sound and complete as findCloseGlassTriangles.
-CloseTriangles findCloseOpaqueTriangles(const Scene& scene, double distance, const std::set<std::uint32_t>& metFromBehind,
+CloseTriangles findCloseOpaqueTriangles(const Scene& scene, double distance,
+                                        const std::set<std::uint32_t>& metFromBehind,
                                         std::uint64_t maxPairs = kMaxExaminedPairs);
 
 // Whether triangles a and b are farther apart than `distance`, by the separating-axis test:

@@ -92,7 +92,8 @@ std::set<std::uint32_t> openObjects(const Scene& scene, Counts counts) {
 }  // namespace
 
 std::set<std::uint32_t> openGlassObjects(const Scene& scene) {
-    return openObjects(scene, [&](const Triangle& t) { return scene.materials[t.material].model == MaterialModel::Glass; });
+    return openObjects(scene,
+                       [&](const Triangle& t) { return scene.materials[t.material].model == MaterialModel::Glass; });
 }
 
 std::set<std::uint32_t> opaqueObjectsMetFromBehind(const Scene& scene, const std::vector<glm::dvec3>& rayStarts) {
