@@ -186,8 +186,7 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
             if (hit.x > tMin && hit.x < tMax + reach) {
                 bool glass = floatBitsToUint(tri.v2.w) == kTriangleGlass;
                 if (collectTouching && glass) {
-                    vec3 edgeCross = ieeeCross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz);
-                    bool entering = ieeeDot(direction, edgeCross) < 0.0;
+                    bool entering = ieeeDot(direction, windingNormal(tri)) < 0.0;
                     addTouchingCandidate(touchingObjects, touchingT, floatBitsToUint(tri.v1.w), entering, hit.x,
                                          tMax + reach);
                 }
@@ -195,10 +194,9 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
                     (hit.x < contact.x || (hit.x == contact.x && triangle < floatBitsToUint(contact.y))))
                     contact = vec4(hit.x, uintBitsToFloat(triangle), hit.yz);
                 if (collectLeaving && !glass &&
-                    (hit.x < leaving.x || (hit.x == leaving.x && triangle < floatBitsToUint(leaving.y)))) {
-                    vec3 edgeCross = ieeeCross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz);
-                    if (ieeeDot(direction, edgeCross) > 0.0) leaving = vec4(hit.x, uintBitsToFloat(triangle), hit.yz);
-                }
+                    (hit.x < leaving.x || (hit.x == leaving.x && triangle < floatBitsToUint(leaving.y))) &&
+                    ieeeDot(direction, windingNormal(tri)) > 0.0)
+                    leaving = vec4(hit.x, uintBitsToFloat(triangle), hit.yz);
                 if (hit.x < tMax) {
                     tMax = hit.x;
                     closest = triangle;

@@ -265,7 +265,7 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
     mat3 normals = loadVertexNormals(triangle);
     vec2 bary = st.hitUv.zw;
     float w0 = 1.0 - bary.x - bary.y;
-    vec3 edgeCross = ieeeCross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz);
+    vec3 edgeCross = windingNormal(tri);
     float crossLength = ieeeLength(edgeCross);
     vec3 interpolated = w0 * normals[0] + bary.x * normals[1] + bary.y * normals[2];
     float normalLength = ieeeLength(interpolated);

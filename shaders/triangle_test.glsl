@@ -4,6 +4,8 @@
 #ifndef VITRUM_TRIANGLE_TEST_GLSL
 #define VITRUM_TRIANGLE_TEST_GLSL
 
+#include "ieee_vector_math.glsl"
+
 // Woop, Benthin and Wald, "Watertight Ray/Triangle Intersection" (JCGT 2013), without back-face
 // culling; the same arithmetic in the same order as host/bvh/bvh_traversal.cpp, which says why it
 // is watertight. What depends on the ray alone is worked out once a ray, as the paper does
@@ -29,6 +31,10 @@ TriangleRay makeTriangleRay(vec3 origin, vec3 direction) {
     float sz = 1.0 / d[kz];
     return TriangleRay(origin, ivec3(kx, ky, kz), vec3(d[kx] * sz, d[ky] * sz, sz));
 }
+
+// The triangle's normal as its corners wind (not unit length): a ray along d meets the triangle
+// from the front where dot(d, n) < 0. The CPU reference's windingNormal has the same operations.
+vec3 windingNormal(TriangleVertices tri) { return ieeeCross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz); }
 
 // Returns (t, u, v), u and v the barycentrics of v1 and v2, with t = -1 on a miss; both sides of
 // the triangle are hit.

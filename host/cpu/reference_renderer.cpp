@@ -190,7 +190,7 @@ private:
         Hit hit;
         hit.t = found.t;
         hit.position = w0 * v0 + found.u * v1 + found.v * v2;
-        const Vec3 edgeCross = glm::cross(v1 - v0, v2 - v0);
+        const Vec3 edgeCross = windingNormal(found.triangle);
         const Real crossLength = glm::length(edgeCross);
         const Vec3 interpolated =
             w0 * Vec3(tri.normal[0]) + found.u * Vec3(tri.normal[1]) + found.v * Vec3(tri.normal[2]);
@@ -395,10 +395,7 @@ private:
         for (const TriangleHit<Real>& h : hits) {
             const Triangle& tri = scene_.triangles[bvh_.triangleOrder[h.triangle]];
             if (scene_.materials[tri.material].model != MaterialModel::Glass || tri.object == hit.object) continue;
-            const gpu::TriangleVertices& tv = vertices_[h.triangle];
-            const Vec3 v0(tv.v0);
-            const Vec3 ng = glm::cross(Vec3(tv.v1) - v0, Vec3(tv.v2) - v0);
-            const Crossing crossing{tri.object, glm::dot(d, ng) < Real(0), h.t};
+            const Crossing crossing{tri.object, glm::dot(d, windingNormal(h.triangle)) < Real(0), h.t};
             const auto known = std::find_if(crossings.begin() + first, crossings.end(),
                                             [&](const Crossing& c) { return c.object == tri.object; });
             if (known == crossings.end()) crossings.push_back(crossing);
@@ -436,20 +433,22 @@ private:
         for (const TriangleHit<Real>& h : hits) {
             if (isGlass(h.triangle)) continue;
             if (nearer(h, opaque)) opaque = h;
-            if (coincidentOpaquePossible_ && nearer(h, leaving) && leavesThrough(h.triangle, ray.direction))
-                leaving = h;
+            // Met from behind: the ray leaves through it.
+            const bool fromBehind = glm::dot(ray.direction, windingNormal(h.triangle)) > Real(0);
+            if (coincidentOpaquePossible_ && fromBehind && nearer(h, leaving)) leaving = h;
         }
         if (leaving) return *leaving;
         if (underGlass && opaque) return *opaque;
         return nearest;
     }
 
-    // Whether a ray along d meets the triangle from behind (its winding's normal points along d):
-    // it leaves through it. The GPU's test (bvh.glsl) has the same operations.
-    bool leavesThrough(std::uint32_t triangle, const Vec3& d) const {
+    // The triangle's normal as its corners wind (not unit length): a ray along d meets the
+    // triangle from the front where dot(d, n) < 0. The kernels' windingNormal
+    // (shaders/triangle_test.glsl) has the same operations.
+    Vec3 windingNormal(std::uint32_t triangle) const {
         const gpu::TriangleVertices& tv = vertices_[triangle];
         const Vec3 v0(tv.v0);
-        return glm::dot(d, glm::cross(Vec3(tv.v1) - v0, Vec3(tv.v2) - v0)) > Real(0);
+        return glm::cross(Vec3(tv.v1) - v0, Vec3(tv.v2) - v0);
     }
 
     // IOR of the medium a ray is in: the innermost object's, or the scene's air.

@@ -1,6 +1,7 @@
 // Whether surfaces of two glass objects come close enough to touch (docs/render-model-decisions.md,
-// "Touching objects"), or glass comes close enough to an opaque surface to rest on it ("Glass on
-// an opaque surface"): only then does a render need to look for them. Boxes around whole objects
+// "Touching objects"), glass comes close enough to an opaque surface to rest on it ("Glass on
+// an opaque surface"), or opaque surfaces of two objects may coincide ("Coincident opaque
+// surfaces"): only then does a render need to look for them. Boxes around whole objects
 // cannot tell a bubble inside a block (nested, never touching) from two blocks face to face; the
 // triangles can.
 #pragma once

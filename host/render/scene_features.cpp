@@ -173,12 +173,11 @@ SceneFeatures analyseScene(const Scene& scene) {
     f.cameraSurface = cameraSurface(scene, offsets);
     const glm::vec3 from = scene.camera.from;
     const glm::vec3 normal = f.cameraSurface.normal;
-    f.cameraMedia = cameraMedia(scene, open, glm::dvec3(offsetRayOrigin(from, normal, offsets)));
-    f.cameraMediaBehind = f.cameraSurface.triangles == 0
-                              ? f.cameraMedia
-                              : cameraMedia(scene, open, glm::dvec3(offsetRayOrigin(from, -normal, offsets)));
-    const std::vector<glm::dvec3> primaryStarts = {glm::dvec3(offsetRayOrigin(from, normal, offsets)),
-                                                   glm::dvec3(offsetRayOrigin(from, -normal, offsets))};
+    // Where primary rays start: off the surface on each side of it, or at the camera.
+    std::vector<glm::dvec3> primaryStarts = {glm::dvec3(offsetRayOrigin(from, normal, offsets))};
+    if (f.cameraSurface.triangles != 0) primaryStarts.push_back(glm::dvec3(offsetRayOrigin(from, -normal, offsets)));
+    f.cameraMedia = cameraMedia(scene, open, primaryStarts.front());
+    f.cameraMediaBehind = primaryStarts.size() == 1 ? f.cameraMedia : cameraMedia(scene, open, primaryStarts.back());
     f.coincidentOpaquePossible =
         findCloseOpaqueTriangles(scene, margin, opaqueObjectsMetFromBehind(scene, primaryStarts)).found;
     if (f.cameraSurface.otherPlanes)
