@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include "common/error.h"
 #include "scene/json_scene.h"
@@ -12,10 +14,43 @@
 
 namespace vitrum {
 
-Scene loadScene(const std::filesystem::path& path) {
+namespace {
+
+std::string lowerCaseExtension(const std::filesystem::path& path) {
     std::string extension = path.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return std::tolower(c); });
+    return extension;
+}
+
+// A folder given where a scene was expected (as the course's scenes come, one folder each): the
+// error names the scenes inside, so the user can pick one.
+[[noreturn]] void refuseFolder(const std::filesystem::path& path) {
+    std::vector<std::string> scenes;
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(path, error)) {
+        std::string extension = lowerCaseExtension(entry.path());
+        if (entry.is_regular_file(error) && (extension == ".json" || extension == ".obj")) {
+            scenes.push_back(entry.path().filename().string());
+        }
+    }
+    std::sort(scenes.begin(), scenes.end());
+    std::string message = "is a folder, not a scene";
+    if (scenes.empty()) {
+        message += ", and holds no .json or .obj scene";
+    } else {
+        message += "; the scenes in it:";
+        for (const std::string& name : scenes) message += " " + name;
+    }
+    throw inputError(path, 0, message);
+}
+
+}  // namespace
+
+Scene loadScene(const std::filesystem::path& path) {
+    std::error_code error;
+    if (std::filesystem::is_directory(path, error)) refuseFolder(path);
+    std::string extension = lowerCaseExtension(path);
     if (extension == ".json") return readJsonScene(path);
     if (extension == ".obj") {
         Scene scene;
