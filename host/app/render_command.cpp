@@ -13,6 +13,7 @@
 #include "bvh/bvh.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/file_extension.h"
 #include "common/progress.h"
 #include "cpu/reference_renderer.h"
 #include "gpu/gpu_buffer.h"
@@ -91,8 +92,7 @@ struct RenderCommand {
 };
 
 bool hasExtension(const std::string& path, std::initializer_list<const char*> extensions) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    std::string ext = lowerCaseExtension(path);
     for (const char* e : extensions)
         if (ext == e) return true;
     return false;

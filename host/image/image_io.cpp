@@ -20,6 +20,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/file_extension.h"
 #include "image/declared_size.h"
 #include "image/image.h"
 #include "image/openexr_file.h"
@@ -32,12 +33,6 @@ namespace vitrum {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string lowerExtension(const fs::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
 
 // A value fit for a file: non-finite becomes 0.
 float finiteOrZero(float v) { return std::isfinite(v) ? v : 0.0f; }
@@ -275,7 +270,7 @@ bool writeExr(const Image& image, const fs::path& file) {
 }  // namespace
 
 void writeImage(const Image& image, const fs::path& path) {
-    const std::string ext = lowerExtension(path);
+    const std::string ext = lowerCaseExtension(path);
     bool (*writer)(const Image&, const fs::path&) = nullptr;
     if (ext == ".png") {
         writer = writePng;
@@ -325,7 +320,7 @@ Image readImage(const fs::path& path) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw inputError(path, 0, "image file not found");
     if (fs::is_directory(path, ec)) throw inputError(path, 0, "expected an image file, got a directory");
-    const std::string ext = lowerExtension(path);
+    const std::string ext = lowerCaseExtension(path);
     if (ext == ".pfm") return readPfm(path);
     if (ext == ".exr") return readOpenExr(path);
     // Decide by content between linear Radiance HDR and sRGB 8/16-bit images, so a misnamed

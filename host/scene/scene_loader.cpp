@@ -1,7 +1,6 @@
 #include "scene/scene_loader.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -9,19 +8,13 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/file_extension.h"
 #include "scene/json_scene.h"
 #include "scene/obj_loader.h"
 
 namespace vitrum {
 
 namespace {
-
-std::string lowerCaseExtension(const std::filesystem::path& path) {
-    std::string extension = path.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return std::tolower(c); });
-    return extension;
-}
 
 // A folder given where a scene was expected (as the course's scenes come, one folder each): the
 // error names the scenes inside, so the user can pick one.

@@ -569,7 +569,7 @@ TEST_F(SceneJsonErrors, RenderAndLightValues) {
 TEST_F(SceneJsonErrors, ObjectsAndFiles) {
     expectInputError([&] { loadScene(dir / "missing.json"); }, {"missing.json", "cannot open"});
     expectInputError([&] { loadScene(write(dir / "s.txt", "{}")); }, {"s.txt", "unknown scene format"});
-    std::filesystem::create_directories(dir / "course_scene");
+    fs::create_directories(dir / "course_scene");
     expectInputError([&] { loadScene(dir / "course_scene"); }, {"course_scene", "is a folder", "no .json or .obj"});
     write(dir / "course_scene" / "b.OBJ", "v 0 0 0\n");
     write(dir / "course_scene" / "a.json", "{}");
