@@ -19,10 +19,11 @@ layout(set = 0, binding = 5, rgba32ui) uniform readonly uimageBuffer lightTexels
 layout(std430, set = 0, binding = 6) readonly buffer Textures { TextureInfo textures[]; };
 layout(std430, set = 0, binding = 7) readonly buffer Texels { float texels[]; };  // RGB, packed
 layout(set = 0, binding = 8, rgba32ui) uniform readonly uimageBuffer objectMediumTexels;
-layout(std430, set = 0, binding = 9) writeonly buffer Pixels { vec4 pixels[]; };  // one tile's, by slot
+// One tile's pixels, by slot; .w is the slot's status (suspend.glsl), which the resumable kernel reads.
+layout(std430, set = 0, binding = 9) buffer Pixels { vec4 pixels[]; };
 layout(std430, set = 0, binding = 10) buffer States { uvec4 stateTexels[]; };  // TraceStates, see suspend.glsl
 layout(std430, set = 0, binding = 11) buffer Stats { uint stats[]; };
-layout(std430, set = 0, binding = 12) buffer PendingRays { PendingRay pendingRays[]; };  // kPendingRayCapacity a pixel
+layout(std430, set = 0, binding = 12) buffer PendingRays { PendingRay pendingRays[]; };  // trace.comp's pendingRayIndex
 layout(std430, set = 0, binding = 13) buffer TraversalStacks { uint traversalStacks[]; };  // kTraversalStackSize a pixel
 
 #include "geometry_texels.glsl"  // fetchVec4, loadTraversalNode, loadTriangle

@@ -83,7 +83,7 @@ void shareRays(bool canTake) {
 
     if (best == 0u) return;
     uint donor = 255u - (best & 0xFFu);
-    uint index = subgroupShuffle(pendingBase + gBottom, donor);
+    uint index = subgroupShuffle(pendingRayIndex(gBottom), donor);
     uint bottom = subgroupShuffle(gBottom, donor);
     uint owner = subgroupShuffle(gTaken ? gOwner : self, donor);
     gGroupTook = true;

@@ -18,11 +18,14 @@
 
 uvec4 gStateTexels[kTraceStateTexels];
 
-// The index of st.control among the texels (see the member order in gpu_types.h); its .x is the
-// phase of a suspended pixel, or one of these.
-const uint kControlTexel = 12u;
-const uint kSlotDone = kPhaseDone;    // finished: later dispatches of the tile skip it
-const uint kSlotRestart = 0xFFFFu;    // given up by the first dispatch: start it again
+// A slot's status is its pixel's alpha (pixels[slot].w), written with the pixel by every
+// dispatch that traces it: so the first dispatch writes nothing else of a slot, and touches no
+// page of the state buffer. A fresh buffer's every first touch of a page is a page fault, about
+// 10 us on the machines of docs/performance.md, and one a slot's mark was 16 bytes in 256:
+// one fault every 16 pixels, 13% of bubble's render at 640x480 (docs/gpu-design.md).
+const float kSlotRestart = 0.0;    // given up by the first dispatch: start it again
+const float kSlotDone = 1.0;       // finished, its colour in .xyz: later dispatches skip it
+const float kSlotSuspended = 2.0;  // suspended by the resumable kernel: its state in stateTexels
 
 void packState() {
     gStateTexels[0] = floatBitsToUint(st.ray.origin);
@@ -37,7 +40,7 @@ void packState() {
     gStateTexels[9] = floatBitsToUint(st.hitUv);
     gStateTexels[10] = st.colourLow;
     gStateTexels[11] = st.colourHigh;
-    gStateTexels[kControlTexel] = st.control;
+    gStateTexels[12] = st.control;
     gStateTexels[13] = st.traversal;
     gStateTexels[14] = st.touching;
     gStateTexels[15] = floatBitsToUint(st.probe);
@@ -56,7 +59,7 @@ void unpackState() {
     st.hitUv = uintBitsToFloat(gStateTexels[9]);
     st.colourLow = gStateTexels[10];
     st.colourHigh = gStateTexels[11];
-    st.control = gStateTexels[kControlTexel];
+    st.control = gStateTexels[12];
     st.traversal = gStateTexels[13];
     st.touching = gStateTexels[14];
     st.probe = uintBitsToFloat(gStateTexels[15]);
@@ -68,18 +71,13 @@ bool inTraversal() {
     return (phase == kPhaseTrace || phase == kPhaseShadow) && st.control.w != kFreshTraversal;
 }
 
-// The first dispatch's verdict on the pixel in `slot`.
-void markSlot(uint slot, bool done) {
-    stateTexels[slot * kTraceStateTexels + kControlTexel].x = done ? kSlotDone : kSlotRestart;
-}
-
 // The resumable kernel: the pixel of `slot` started afresh or as the last dispatch suspended it;
 // false when it is done.
 bool resumeState(uint slot) {
     uint first = slot * kTraceStateTexels;
-    uint phase = stateTexels[first + kControlTexel].x;
-    if (phase == kSlotDone) return false;
-    bool suspended = phase != kSlotRestart;
+    float status = pixels[slot].w;
+    if (status == kSlotDone) return false;
+    bool suspended = status == kSlotSuspended;
     uint texels = suspended ? kTraceStateTexels : 0u;
     for (uint i = 0u; i < texels; ++i) gStateTexels[i] = stateTexels[first + i];
     if (suspended) unpackState();
@@ -89,8 +87,8 @@ bool resumeState(uint slot) {
     return true;
 }
 
-// The resumable kernel: keeps the state of an unfinished pixel in `slot` for the next dispatch,
-// or marks the slot done.
+// The resumable kernel: keeps the state of an unfinished pixel in `slot` for the next dispatch
+// (its pixel says it is suspended, slotPixel below).
 void suspendState(uint slot, bool suspended) {
     uint first = slot * kTraceStateTexels;
     packState();
@@ -98,7 +96,13 @@ void suspendState(uint slot, bool suspended) {
     for (uint i = 0u; i < texels; ++i) stateTexels[first + i] = gStateTexels[i];
     uint entries = suspended && inTraversal() ? st.control.w : 0u;
     for (uint i = 0u; i < entries; ++i) traversalStacks[stackBase + i] = gStack[i];
-    if (!suspended) stateTexels[first + kControlTexel].x = kSlotDone;
+}
+
+// What a dispatch writes to the pixel of its slot: the colour of a finished pixel, or the status
+// of one that is not.
+vec4 slotPixel(bool done, vec3 colour) {
+    if (done) return vec4(colour, kSlotDone);
+    return vec4(0.0, 0.0, 0.0, kResumable ? kSlotSuspended : kSlotRestart);
 }
 
 #endif

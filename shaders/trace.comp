@@ -43,11 +43,35 @@ uint gMediumStackOverflows = 0u;
 // This invocation's pixel in the image (main's tilePixel() in the tile).
 uvec2 gPixel = uvec2(0u);
 
-// This pixel's pending rays: pendingRays[pendingBase .. pendingBase + kPendingRayCapacity), the
-// ones waiting from gBottom up to st.control.y; below gBottom, those that other lanes took
-// (ray_sharing.glsl).
-uint pendingBase = 0u;
+// This pixel's pending rays: entries 0 .. kPendingRayCapacity - 1 of its place in pendingRays
+// (pendingRayIndex), the ones waiting from gBottom up to st.control.y; below gBottom, those that
+// other lanes took (ray_sharing.glsl).
 uint gBottom = 0u;
+
+// Where entry `entry` of this pixel's pending rays is: entry-major, so that the deeper entries,
+// which few pixels reach, lie together. In the first dispatch pending rays are the invocation's,
+// kept only while it traces a unit (a pixel it gives up starts again from nothing), so the
+// persistent kernel's invocations, 8 times fewer than a tile's pixels, use 8 times less memory
+// and use it again unit after unit. The resumable kernel keeps them by slot, across dispatches.
+// Memory matters beyond the caches: a fresh buffer's first touch of a page is a page fault,
+// about 10 us on the machines of docs/performance.md; by slot, with a slot's entries together,
+// a render of bubble at 640x480 took 7,000 more faults and 27% longer (docs/gpu-design.md).
+uint gPendingPlace = 0u;
+uint gPendingStride = 0u;
+uint pendingRayIndex(uint entry) { return entry * gPendingStride + gPendingPlace; }
+
+void placePendingRays(uint slot) {
+    if (kResumable) {
+        gPendingPlace = slot;
+        gPendingStride = params.tile.z * params.tile.w;
+    } else {
+        uint invocations = gl_WorkGroupSize.x * gl_WorkGroupSize.y;
+        uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+        gPendingPlace = group * invocations + gl_LocalInvocationIndex;
+        gPendingStride = gl_NumWorkGroups.x * gl_NumWorkGroups.y * invocations;
+    }
+}
+
 // The pending ray read this round, at its one load site (main's loop, after shading, where a lane
 // that takes another's ray reads it too): on lavapipe every storage-buffer load site is a loop
 // over the lanes each round, whether a lane loads or not.
@@ -515,8 +539,9 @@ void scatter(GpuMaterial m) {
         if (st.control.y >= kPendingRayCapacity) {
             gRayStackOverflows += 1u;  // the refraction is dropped, never silently
         } else {
-            storePendingRay(pendingBase + st.control.y, childRay(transmittedOrigin, refractDirection(d, n, eta, cos2t),
-                                                                 w * (1.0 - r), media, count, depth + 1u));
+            PendingRay refracted = childRay(transmittedOrigin, refractDirection(d, n, eta, cos2t), w * (1.0 - r), media,
+                                            count, depth + 1u);
+            storePendingRay(pendingRayIndex(st.control.y), refracted);
             st.control.y += 1u;
             gRefractionRays += 1u;
         }
@@ -548,7 +573,7 @@ void nextRay() {
         return;
     }
     st.control.y -= 1u;
-    loadPendingRay(pendingBase + st.control.y);
+    loadPendingRay(pendingRayIndex(st.control.y));
 }
 
 // The next sample's primary ray, or the end of the pixel.
@@ -629,7 +654,7 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
     bool hasPixel = local.x < params.tile.z && local.y < params.tile.w && pixel.x < params.image.x && pixel.y < params.image.y;
     if (!hasPixel && !kFullSubgroups) return 0u;
     uint slot = local.y * params.tile.z + local.x;
-    pendingBase = slot * kPendingRayCapacity;
+    placePendingRays(slot);
     stackBase = slot * kTraversalStackSize;
     if (!kResumable) {
         if (hasPixel) startPixel();
@@ -709,9 +734,8 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
     st.traversal.w += gPixelSteps;
     bool done = st.control.x == kPhaseDone && !givenUpGroup;
     if (hasPixel) {
-        if (done) pixels[slot] = vec4(colourOfSum(st.colourLow, st.colourHigh) / float(params.image.z), 1.0);
+        pixels[slot] = slotPixel(done, colourOfSum(st.colourLow, st.colourHigh) / float(params.image.z));
         if (kResumable) suspendState(slot, !done);
-        else markSlot(slot, done);
     }
 
     // A pixel the first dispatch gives up is traced again from its start: what it counted so far

@@ -104,13 +104,20 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     // Like the state buffers, the pixels are one tile's (a slot a pixel), copied into the image
     // as each tile is done: so the image's size is not bound by the device's buffer limits.
     const VkDeviceSize tilePixels = VkDeviceSize(tileWidth) * tileHeight;
-    // The kernel writes each pixel once; the host reads them.
+    // The kernel writes each pixel, with its slot's status in .w (shaders/suspend.glsl); the host
+    // reads the colours.
     GpuBuffer pixels(device, tilePixels * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                      "pixels of one tile", MemoryUse::Readback);
     GpuBuffer states(device, tilePixels * sizeof(gpu::TraceState), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                      "trace state of one tile", MemoryUse::DeviceOnly);
-    GpuBuffer pendingRays(device, std::max<VkDeviceSize>(tilePixels * kernel.pendingRayCapacity * sizeof(gpu::PendingRay), 16),
-                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "pending rays of one tile", MemoryUse::DeviceOnly);
+    // The resumable kernel keeps pending rays by slot, the first dispatch by invocation (trace.comp's
+    // pendingRayIndex): as many as a tile's whole workgroups have, at most.
+    const auto wholeGroups = [](std::uint32_t side) { return (side + kTraceGroupSize - 1) / kTraceGroupSize; };
+    const VkDeviceSize tileInvocations =
+        VkDeviceSize(wholeGroups(tileWidth)) * wholeGroups(tileHeight) * kTraceGroupSize * kTraceGroupSize;
+    const VkDeviceSize pendingRayBytes = tileInvocations * kernel.pendingRayCapacity * sizeof(gpu::PendingRay);
+    GpuBuffer pendingRays(device, std::max<VkDeviceSize>(pendingRayBytes, 16), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                          "pending rays of one tile", MemoryUse::DeviceOnly);
     GpuBuffer traversalStacks(device, tilePixels * gpu::kTraversalStackSize * sizeof(std::uint32_t),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "traversal stacks of one tile", MemoryUse::DeviceOnly);
     stats.stateBytesPerPixel = sizeof(gpu::TraceState) + kernel.pendingRayCapacity * sizeof(gpu::PendingRay) +
