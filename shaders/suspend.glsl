@@ -21,8 +21,8 @@ uvec4 gStateTexels[kTraceStateTexels];
 // A slot's status is its pixel's alpha (pixels[slot].w), written with the pixel by every
 // dispatch that traces it: so the first dispatch writes nothing else of a slot, and touches no
 // page of the state buffer. A fresh buffer's every first touch of a page is a page fault, about
-// 10 us on the machines of docs/performance.md, and one a slot's mark was 16 bytes in 256:
-// one fault every 16 pixels, 13% of bubble's render at 640x480 (docs/gpu-design.md).
+// 10 us on the machines of docs/performance.md. The mark was once one word of the slot's 256
+// bytes of state: a fault every 16 pixels, 13% of bubble's render at 640x480 (docs/gpu-design.md).
 const float kSlotRestart = 0.0;    // given up by the first dispatch: start it again
 const float kSlotDone = 1.0;       // finished, its colour in .xyz: later dispatches skip it
 const float kSlotSuspended = 2.0;  // suspended by the resumable kernel: its state in stateTexels
