@@ -83,12 +83,18 @@ void shareRays(bool canTake) {
 
     if (best == 0u) return;
     uint donor = 255u - (best & 0xFFu);
-    uint index = subgroupShuffle(pendingRayIndex(gBottom), donor);
+    // The ray goes to the taker by shuffles: the donor reads back what it wrote itself. Memory
+    // written by one invocation and read by another would need a barrier, and Mesa 25's lavapipe
+    // runs a subgroup barrier as a workgroup's, losing invocations (docs/gpu-design.md, "Two drivers").
+    PendingRay given = PendingRay(vec4(0.0), vec4(0.0), vec4(0.0), uvec4(0u));
+    if (self == donor) given = readPendingRay(pendingRayIndex(gBottom));
+    given.origin = subgroupShuffle(given.origin, donor);
+    given.direction = subgroupShuffle(given.direction, donor);
+    given.weight = subgroupShuffle(given.weight, donor);
+    given.media = kMediumStackDepth > 1u ? subgroupShuffle(given.media, donor) : uvec4(subgroupShuffle(given.media.x, donor), 0u, 0u, 0u);
     uint bottom = subgroupShuffle(gBottom, donor);
     uint owner = subgroupShuffle(gTaken ? gOwner : self, donor);
     gGroupTook = true;
-    // The donor wrote the ray in an earlier round: order its write before the taker's read.
-    subgroupBarrier();
     if (self == donor) gBottom += 1u;
     if (self == taker) {
         gOwnLow.xyz = st.colourLow.xyz;
@@ -102,7 +108,7 @@ void shareRays(bool canTake) {
         // Its tree's pending rays go where its owner's would have: the same capacity is left.
         st.control.y = bottom;
         gBottom = bottom;
-        loadPendingRay(index);
+        continueWithRay(given);
     }
 }
 #endif

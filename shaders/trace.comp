@@ -77,6 +77,7 @@ void placePendingRays(uint slot) {
 // over the lanes each round, whether a lane loads or not.
 uint gLoadIndex = 0u;
 bool gLoad = false;
+bool gLoadRead = false;  // st.ray is read from gLoadIndex; else another lane gave it (ray_sharing.glsl)
 // This pixel's BVH traversal stack, in private memory while the kernel runs: on lavapipe that is
 // cheaper than a storage buffer, whose every access loops over the lanes. A pixel suspended in
 // the middle of a traversal keeps it in traversalStacks[stackBase .. stackBase + kTraversalStackSize).
@@ -129,7 +130,17 @@ PendingRay readPendingRay(uint index) {
 void loadPendingRay(uint index) {
     gLoadIndex = index;
     gLoad = true;
+    gLoadRead = true;
     st.control.x = kPhaseTrace;  // beginRay, once the ray is read, begins its traversal
+}
+
+// `r`, which another lane gave this one, goes on as st.ray: begun at the round's end, where a
+// pending ray is read.
+void continueWithRay(PendingRay r) {
+    st.ray = r;
+    gLoad = true;
+    gLoadRead = false;
+    st.control.x = kPhaseTrace;
 }
 
 #include "ray_sharing.glsl"
@@ -621,6 +632,7 @@ void startUnit() {
     gBottom = 0u;
     gLoadIndex = 0u;
     gLoad = false;
+    gLoadRead = false;
     gTaken = false;
     gOwner = 0u;
     gOwnLow = uvec4(0u);
@@ -719,7 +731,7 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
         if (kRaySharing) shareRays(hasPixel);
 #endif
         if (kPendingRayCapacity > 0u && gLoad) {
-            st.ray = readPendingRay(gLoadIndex);
+            if (gLoadRead) st.ray = readPendingRay(gLoadIndex);
             beginRay();
             gLoad = false;
         }
