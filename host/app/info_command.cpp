@@ -156,12 +156,15 @@ int devicesCommand(int argc, char** argv, int first) {
             std::printf("   not usable: vitrum needs Vulkan 1.2\n");
             continue;
         }
+        std::printf("   driver: %s, %s\n", d.driverName.c_str(), d.driverInfo.c_str());
         // What decides how trace.comp runs there (docs/gpu-design.md): the subgroups, which
         // count the loop budget and sum the statistics, and the buffer limits the scene must fit.
         const SubgroupSupport& s = d.subgroups;
         std::printf("   subgroups of %u lanes, arithmetic and ballots: %s, full subgroups: %s; statistics summed by %s\n",
                     s.size, s.arithmeticAndBallot ? "yes" : "no", s.fullSubgroups ? "yes" : "no",
                     statisticsSumsName(statisticsSumsFor(s, StatisticsSums::shuffles)));
+        // The kernel path needs the device opened: the self-check runs there (gpu/subgroup_self_check.h).
+        std::printf("   kernel: %s\n", VulkanDevice(std::to_string(d.index)).kernelPath().c_str());
         std::printf("   storage buffers up to %llu MiB, texel buffers up to %u texels\n",
                     static_cast<unsigned long long>(d.maxStorageBufferRange >> 20), d.maxTexelBufferElements);
         // Without it the driver may assume no value is infinite or NaN (gpu/spirv_float_semantics.h).

@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "common/error.h"
+#include "gpu/subgroup_self_check.h"
 #include "gpu/vulkan_error.h"
 
 namespace vitrum {
@@ -176,6 +177,13 @@ DeviceDescription describeDevice(VkPhysicalDevice device, std::uint32_t index) {
     // Subgroup properties are Vulkan 1.1, float controls 1.2; vitrum refuses devices below 1.2.
     if (p.apiVersion >= VK_API_VERSION_1_1) d.subgroups = subgroupSupportOf(device);
     d.preservesInfNan = p.apiVersion >= VK_API_VERSION_1_2 && keepsInfNan(device);
+    if (p.apiVersion >= VK_API_VERSION_1_2) {
+        VkPhysicalDeviceDriverProperties driver{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+        VkPhysicalDeviceProperties2 properties2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &driver};
+        vkGetPhysicalDeviceProperties2(device, &properties2);
+        d.driverName = driver.driverName;
+        d.driverInfo = driver.driverInfo;
+    }
     describeMemory(device, d);
     return d;
 }
@@ -283,6 +291,7 @@ VulkanDevice::VulkanDevice(const std::string& selector) {
         VkFence fence = VK_NULL_HANDLE;
         VK_CHECK(vkCreateFence(device_, &fenceInfo, nullptr, &fence));
         fence_ = UniqueFence(device_, fence);
+        chooseKernelPath();
     } catch (...) {
         release();
         throw;
@@ -290,6 +299,27 @@ VulkanDevice::VulkanDevice(const std::string& selector) {
 }
 
 VulkanDevice::~VulkanDevice() { release(); }
+
+// The fast kernel relies on full subgroups doing what the self-check does; a device that fails it
+// is treated as one without them, so every kernel it gets is the safe one, with one warning.
+void VulkanDevice::chooseKernelPath() {
+    if (!subgroups().fullSubgroups) {
+        kernelPath_ = subgroups().arithmeticAndBallot
+                          ? "safe: statistics summed by subgroupAdd (the device cannot require full subgroups)"
+                          : "safe: one atomic a counter (the device has no subgroup arithmetic and ballots)";
+        return;
+    }
+    const char* fault = std::getenv("VITRUM_SELF_CHECK_FAULT");
+    const SubgroupSelfCheck check = checkSubgroupMachinery(*this, false, fault && std::string(fault) == "1");
+    if (check.passed) {
+        kernelPath_ = "fast: full subgroups (shuffles, ray sharing, persistent subgroups on a CPU), self-check passed";
+        return;
+    }
+    description_.subgroups.fullSubgroups = false;
+    kernelPath_ = "safe: statistics summed by subgroupAdd (the self-check of full subgroups failed: " + check.failure + ")";
+    warn(name() + " failed the self-check of full subgroups (" + check.failure +
+         "): it gets the kernel without them (the same image, slower)");
+}
 
 void VulkanDevice::release() {
     fence_.reset();

@@ -33,6 +33,11 @@ struct DeviceDescription {
     std::string type;  // "discrete GPU", "integrated GPU", "CPU", ...
     bool cpu = false;  // VK_PHYSICAL_DEVICE_TYPE_CPU: lavapipe
     std::uint32_t apiVersion = 0;
+    // The driver and its version (VkPhysicalDeviceDriverProperties, Vulkan 1.2): "llvmpipe",
+    // "Mesa 25.0.7-2~bpo12+1 (LLVM 15.0.6)". Two builds of one driver can differ in what they
+    // do beyond the spec (docs/gpu-design.md, "Two drivers").
+    std::string driverName;
+    std::string driverInfo;
     SubgroupSupport subgroups;
     std::uint64_t maxStorageBufferRange = 0;  // bytes a storage buffer binding may span
     std::uint32_t maxTexelBufferElements = 0;
@@ -74,6 +79,9 @@ public:
     std::uint32_t maxSubgroupSize() const { return subgroups().maxSize; }
     // DeviceDescription::preservesInfNan.
     bool preservesInfNan() const { return description_.preservesInfNan; }
+    // Which trace kernel this device gets, and why (gpu/subgroup_self_check.h): "fast: ..." where
+    // full subgroups passed the self-check, else "safe: ..." with the reason.
+    const std::string& kernelPath() const { return kernelPath_; }
     // Messages the validation layer sent so far (0 when validation is off).
     std::uint32_t validationMessages() const;
 
@@ -85,11 +93,13 @@ public:
 
 private:
     void release();
+    void chooseKernelPath();
     VkCommandBuffer beginCommands();
     void endSubmitWait(VkCommandBuffer commands);
 
     VkInstance instance_ = VK_NULL_HANDLE;
     DeviceDescription description_;
+    std::string kernelPath_;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties properties_{};

@@ -1,0 +1,68 @@
+#version 460
+// The device self-check of the fast kernel's subgroup machinery (host/gpu/subgroup_self_check.h):
+// trace.comp's full-subgroup path in miniature, checked on the host. Subgroups of one workgroup
+// take units from a counter (an elected lane's atomic, broadcast) until none is left, as the
+// persistent kernel does; in each unit the lanes loop together, each for a trip count of its own,
+// until the last is done, every round reading one another by shuffles (a butterfly for the
+// group's largest value, and a value from a lane picked by the group, as ray sharing does), and
+// sum their counts by a butterfly as the statistics do. Every lane writes what it saw.
+//
+// With kSubgroupBarrier each round also has a subgroup barrier: the minimal kernel of the Mesa 25
+// lavapipe defect in docs/gpu-design.md ("Two drivers"), which trace.comp no longer needs.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_shuffle : require
+
+#include "shared/subgroup_check_types.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;  // trace.comp's workgroup
+
+layout(constant_id = 0) const bool kSubgroupBarrier = false;
+
+layout(std430, set = 0, binding = 0) buffer Control { SubgroupCheckControl control; };
+layout(std430, set = 0, binding = 1) buffer Results { SubgroupCheckResult results[]; };
+
+uint groupMax(uint value) {
+    for (uint distance = 1u; distance < gl_SubgroupSize; distance <<= 1u)
+        value = max(value, subgroupShuffleXor(value, distance));
+    return value;
+}
+
+uint groupSum(uint value) {
+    for (uint distance = 1u; distance < gl_SubgroupSize; distance <<= 1u)
+        value += subgroupShuffleXor(value, distance);
+    return value;
+}
+
+void main() {
+    for (;;) {
+        uint unit = 0u;
+        if (subgroupElect()) unit = atomicAdd(control.cursor, 1u);
+        unit = subgroupBroadcastFirst(unit);
+        if (unit >= control.units) break;
+        uint lane = gl_SubgroupInvocationID;
+        uint trips = subgroupCheckTrips(unit, lane);
+        // The injected fault (tests only): one lane of unit 0 leaves its loop at once, as a lane
+        // a driver lost would.
+        bool lost = control.fault != 0u && unit == 0u && lane == 1u;
+        uint mine = 0u;
+        uint rounds = 0u;
+        uint received = 0u;
+        bool busy = trips > 0u && !lost;
+        if (groupMax(busy ? 1u : 0u) != 0u) do {
+            rounds += 1u;
+            if (busy) mine += 1u;
+            // The lane with the most trips left (the lowest among equals) gives this round's value.
+            uint left = trips - mine;
+            uint key = groupMax(busy ? (left << 8u) | (255u - lane) : 0u);
+            uint giver = key == 0u ? 0u : 255u - (key & 0xFFu);
+            uint given = subgroupShuffle(subgroupCheckValue(unit, lane, rounds), giver);
+            if (kSubgroupBarrier) subgroupBarrier();
+            received += given;
+            busy = busy && mine < trips;
+        } while (groupMax(busy ? 1u : 0u) != 0u);
+        uint sum = groupSum(mine);
+        if (!lost) results[unit * gl_SubgroupSize + lane] = SubgroupCheckResult(rounds, mine, received, sum + 1u);
+    }
+}
