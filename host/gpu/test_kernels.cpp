@@ -5,6 +5,7 @@
 
 #include "box_test.spv.h"
 #include "colour_sum_test.spv.h"
+#include "loop_limit_probe.spv.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/gpu_buffer.h"
 #include "optics_test.spv.h"
@@ -59,6 +60,20 @@ std::vector<BoxResult> evaluateBoxTestsOnGpu(VulkanDevice& device, std::span<con
 std::vector<ColourSumResult> evaluateColourSumsOnGpu(VulkanDevice& device, std::span<const ColourSumCase> cases) {
     return runTestKernel<ColourSumCase, ColourSumResult>(device, code(colour_sum_test_spv), gpu::kColourSumTestGroupSize,
                                                          cases, "colour sum test cases");
+}
+
+std::optional<std::uint32_t> probeLoopLimit(VulkanDevice& device, std::uint32_t iterations) {
+    const std::array<VkDescriptorType, 1> bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    ComputePipeline pipeline(device, code(loop_limit_probe_spv), bindings);
+    GpuBuffer probe(device, 4 * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "loop limit probe");
+    std::uint32_t* values = probe.as<std::uint32_t>();
+    values[0] = iterations;
+    values[1] = 0;
+    const std::array<const GpuBuffer*, 1> bound = {&probe};
+    pipeline.bind(bound);
+    device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, 1); });
+    if (values[1] >= iterations) return std::nullopt;
+    return values[1];
 }
 
 }  // namespace vitrum

@@ -5,8 +5,12 @@
 //   touching_test.comp  shaders/touching.glsl (touching glass surfaces during a traversal)
 //   box_test.comp       shaders/ray_box.glsl (the traversal's ray/box test)
 //   colour_sum_test.comp shaders/colour_sum.glsl (a pixel's colour sum in fixed point)
+// and probes what a driver does beyond the spec:
+//   loop_limit_probe.comp  whether it ends a shader's loops early
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -38,5 +42,9 @@ std::vector<OpticsResult> evaluateOpticsOnGpu(VulkanDevice& device, std::span<co
 std::vector<TouchingResult> evaluateTouchingOnGpu(VulkanDevice& device, std::span<const TouchingCase> cases);
 std::vector<BoxResult> evaluateBoxTestsOnGpu(VulkanDevice& device, std::span<const BoxCase> cases);
 std::vector<ColourSumResult> evaluateColourSumsOnGpu(VulkanDevice& device, std::span<const ColourSumCase> cases);
+
+// Runs a loop of `iterations` on `device`: how many of them ran, where the driver ended it early
+// (Mesa 22.3's lavapipe: 65,535), or nothing where it ran them all.
+std::optional<std::uint32_t> probeLoopLimit(VulkanDevice& device, std::uint32_t iterations);
 
 }  // namespace vitrum
