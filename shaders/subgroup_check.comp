@@ -63,6 +63,6 @@ void main() {
             busy = busy && mine < trips;
         } while (groupMax(busy ? 1u : 0u) != 0u);
         uint sum = groupSum(mine);
-        if (!lost) results[unit * gl_SubgroupSize + lane] = SubgroupCheckResult(rounds, mine, received, sum + 1u);
+        if (!lost) results[unit * gl_SubgroupSize + lane] = SubgroupCheckResult((rounds << 24u) | (mine << 16u) | (sum + 1u), received);
     }
 }

@@ -14,14 +14,18 @@
 namespace vitrum {
 namespace {
 
-// Two workgroups of 8x8 (16 subgroups of lavapipe's 8 lanes) take 96 units: each subgroup takes
+// Two workgroups of 8x8 (16 subgroups of lavapipe's 8 lanes) take 64 units: each subgroup takes
 // several, in whatever order the device's threads run them.
 constexpr std::uint32_t kWorkgroups = 2;
 constexpr std::uint32_t kInvocationsPerWorkgroup = 64;
-constexpr std::uint32_t kUnits = 96;
+constexpr std::uint32_t kUnits = 64;
+
+struct LaneResult {
+    std::uint32_t rounds, trips, received, sumPlusOne;
+};
 
 // What every lane of `unit` must have written, worked out as the kernel's loop does.
-std::vector<gpu::SubgroupCheckResult> expectedUnit(std::uint32_t unit, std::uint32_t lanes) {
+std::vector<LaneResult> expectedUnit(std::uint32_t unit, std::uint32_t lanes) {
     std::vector<std::uint32_t> trips(lanes), mine(lanes, 0);
     std::vector<bool> busy(lanes);
     std::uint32_t rounds = 0, received = 0, sum = 0;
@@ -42,7 +46,7 @@ std::vector<gpu::SubgroupCheckResult> expectedUnit(std::uint32_t unit, std::uint
         received += gpu::subgroupCheckValue(unit, giver, rounds);
         for (std::uint32_t lane = 0; lane < lanes; ++lane) busy[lane] = busy[lane] && mine[lane] < trips[lane];
     }
-    std::vector<gpu::SubgroupCheckResult> result(lanes);
+    std::vector<LaneResult> result(lanes);
     for (std::uint32_t lane = 0; lane < lanes; ++lane) result[lane] = {rounds, trips[lane], received, sum + 1};
     return result;
 }
@@ -80,10 +84,11 @@ SubgroupSelfCheck checkSubgroupMachinery(VulkanDevice& device, bool subgroupBarr
                            std::to_string(kUnits + subgroups)};
     const gpu::SubgroupCheckResult* got = results.as<gpu::SubgroupCheckResult>();
     for (std::uint32_t unit = 0; unit < kUnits; ++unit) {
-        const std::vector<gpu::SubgroupCheckResult> want = expectedUnit(unit, lanes);
+        const std::vector<LaneResult> want = expectedUnit(unit, lanes);
         for (std::uint32_t lane = 0; lane < lanes; ++lane) {
-            const gpu::SubgroupCheckResult& g = got[unit * lanes + lane];
-            const gpu::SubgroupCheckResult& w = want[lane];
+            const gpu::SubgroupCheckResult& packed = got[unit * lanes + lane];
+            const LaneResult g{packed.counts >> 24, (packed.counts >> 16) & 0xFF, packed.received, packed.counts & 0xFFFF};
+            const LaneResult& w = want[lane];
             const std::string where = "unit " + std::to_string(unit) + ", lane " + std::to_string(lane);
             if (g.sumPlusOne == 0) return {false, "an invocation never finished (" + where + ")"};
             if (g.rounds != w.rounds || g.trips != w.trips)

@@ -21,12 +21,14 @@ struct SubgroupCheckControl {
     uint unused;
 };
 
-// One a lane of a unit (unit * subgroup size + lane).
+// One a lane of a unit (unit * subgroup size + lane), 8 bytes, so that the check's buffers fit
+// even the 4 KiB a test lowers the storage buffer limit to (VITRUM_MAX_BUFFER_BYTES).
 struct SubgroupCheckResult {
-    uint rounds;    // the rounds its subgroup ran: the largest trip count of its lanes
-    uint trips;     // the rounds in which this lane was busy: its own trip count
+    // Bits 24-31: the rounds its subgroup ran (the largest trip count of its lanes); 16-23: the
+    // rounds in which this lane was busy (its own trip count); 0-15: the sum of its lanes' trips
+    // plus one (0: never written).
+    uint counts;
     uint received;  // the sum of the values the subgroup's picked lane gave each round
-    uint sumPlusOne;  // the sum of its lanes' trips, plus one (0: never written)
 };
 
 // Rounds lane `lane` of `unit` is busy: 0 to 24, so that a workgroup's subgroups run different
