@@ -5,10 +5,11 @@
 // scenes the groups' lanes are busy in only half to two thirds of their steps
 // (docs/gpu-design.md). A pixel's pending rays (trace.comp's pendingRays, refractions whose
 // reflection went first) are whole ray trees of their own: once a round (trace.comp's main
-// loop), one idle lane takes the bottom pending ray of the lane that has the most, the one its
-// owner would trace last, traces its tree, and when it is done hands the tree's colour sum and
+// loop), one idle lane takes the bottom pending ray of the lane that has the most (of those that
+// read no ray of their own that round), the one its owner would trace last, traces its tree, and when it is done hands the tree's colour sum and
 // steps back to the lane whose pixel the ray is of (its owner). Pending rays the taker pushes
-// meanwhile can be taken in turn; they are of the same owner.
+// meanwhile can be taken in turn; they are of the same owner. Everything moves between lanes by
+// shuffles, never through memory (handOver says why).
 //
 // Nothing of the image or the statistics depends on who traces a ray: the colour is a sum in
 // fixed point (colour_sum.glsl), the same in any order; a taken ray's pending rays start at the
@@ -39,6 +40,12 @@ uvec4 gOwnLow = uvec4(0u);
 uvec4 gOwnHigh = uvec4(0u);
 uint gOwnSteps = 0u;
 bool gGroupTook = false;  // some lane of the group took a ray: the same in every lane
+// The lane that gives a pending ray this round, plus one (0: none), the same in every lane. The
+// giver reads the ray at the round's one load site (trace.comp's main loop, where the lanes read
+// their own next rays), and handOver passes it to the taker by a shuffle.
+uint gGiver = 0u;
+bool gGives = false;     // this lane gives the ray it reads this round
+bool gReceives = false;  // this lane takes the ray given this round
 
 #ifndef VITRUM_NO_SUBGROUP_OPERATIONS
 // Serves one idle lane: called once a round by every lane of the subgroup, after shading.
@@ -52,8 +59,9 @@ void shareRays(bool canTake) {
     // else any idle one.
     uint servedKey = idle && (gTaken || canTake) ? (gTaken ? 0x100u : 0u) | (self + 1u) : 0u;
     uint served = groupMax(servedKey);
-    // The lane to take from: the most pending rays (of the lowest lane among equals).
-    uint available = idle ? 0u : st.control.y - gBottom;
+    // The lane to take from: the most pending rays (of the lowest lane among equals), of those
+    // that read no ray of their own this round (the given ray is read where theirs would be).
+    uint available = idle || gLoad ? 0u : st.control.y - gBottom;
     uint best = groupMax(available > 0u ? (available << 8u) | (255u - self) : 0u);
     if (served == 0u) return;
     uint taker = (served & 0xFFu) - 1u;
@@ -83,19 +91,15 @@ void shareRays(bool canTake) {
 
     if (best == 0u) return;
     uint donor = 255u - (best & 0xFFu);
-    // The ray goes to the taker by shuffles: the donor reads back what it wrote itself. Memory
-    // written by one invocation and read by another would need a barrier, and Mesa 25's lavapipe
-    // runs a subgroup barrier as a workgroup's, losing invocations (docs/gpu-design.md, "Two drivers").
-    PendingRay given = PendingRay(vec4(0.0), vec4(0.0), vec4(0.0), uvec4(0u));
-    if (self == donor) given = readPendingRay(pendingRayIndex(gBottom));
-    given.origin = subgroupShuffle(given.origin, donor);
-    given.direction = subgroupShuffle(given.direction, donor);
-    given.weight = subgroupShuffle(given.weight, donor);
-    given.media = kMediumStackDepth > 1u ? subgroupShuffle(given.media, donor) : uvec4(subgroupShuffle(given.media.x, donor), 0u, 0u, 0u);
     uint bottom = subgroupShuffle(gBottom, donor);
     uint owner = subgroupShuffle(gTaken ? gOwner : self, donor);
     gGroupTook = true;
-    if (self == donor) gBottom += 1u;
+    gGiver = donor + 1u;
+    if (self == donor) {
+        gLoadIndex = pendingRayIndex(gBottom);
+        gGives = true;
+        gBottom += 1u;
+    }
     if (self == taker) {
         gOwnLow.xyz = st.colourLow.xyz;
         gOwnHigh.xyz = st.colourHigh.xyz;
@@ -108,8 +112,26 @@ void shareRays(bool canTake) {
         // Its tree's pending rays go where its owner's would have: the same capacity is left.
         st.control.y = bottom;
         gBottom = bottom;
-        continueWithRay(given);
+        gReceives = true;
+        st.control.x = kPhaseTrace;  // beginRay, once the ray is handed over, begins its traversal
     }
+}
+
+// Hands the ray the giver read (`loaded`, in the giver's lane) to the taker, by shuffles: no
+// invocation reads memory another wrote, which would need a barrier, and Mesa 25.0's lavapipe
+// runs a subgroup barrier as a workgroup's, losing invocations (docs/gpu-design.md, "Two
+// drivers"). Called once a round by every lane, after the round's read of pending rays.
+void handOver(inout PendingRay loaded) {
+    if (gGiver == 0u) return;
+    uint giver = gGiver - 1u;
+    PendingRay given;
+    given.origin = subgroupShuffle(loaded.origin, giver);
+    given.direction = subgroupShuffle(loaded.direction, giver);
+    given.weight = subgroupShuffle(loaded.weight, giver);
+    given.media = kMediumStackDepth > 1u ? subgroupShuffle(loaded.media, giver)
+                                         : uvec4(subgroupShuffle(loaded.media.x, giver), 0u, 0u, 0u);
+    if (gReceives) loaded = given;
+    gGiver = 0u;
 }
 #endif
 

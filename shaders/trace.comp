@@ -77,7 +77,6 @@ void placePendingRays(uint slot) {
 // over the lanes each round, whether a lane loads or not.
 uint gLoadIndex = 0u;
 bool gLoad = false;
-bool gLoadRead = false;  // st.ray is read from gLoadIndex; else another lane gave it (ray_sharing.glsl)
 // This pixel's BVH traversal stack, in private memory while the kernel runs: on lavapipe that is
 // cheaper than a storage buffer, whose every access loops over the lanes. A pixel suspended in
 // the middle of a traversal keeps it in traversalStacks[stackBase .. stackBase + kTraversalStackSize).
@@ -130,17 +129,7 @@ PendingRay readPendingRay(uint index) {
 void loadPendingRay(uint index) {
     gLoadIndex = index;
     gLoad = true;
-    gLoadRead = true;
     st.control.x = kPhaseTrace;  // beginRay, once the ray is read, begins its traversal
-}
-
-// `r`, which another lane gave this one, goes on as st.ray: begun at the round's end, where a
-// pending ray is read.
-void continueWithRay(PendingRay r) {
-    st.ray = r;
-    gLoad = true;
-    gLoadRead = false;
-    st.control.x = kPhaseTrace;
 }
 
 #include "ray_sharing.glsl"
@@ -632,7 +621,9 @@ void startUnit() {
     gBottom = 0u;
     gLoadIndex = 0u;
     gLoad = false;
-    gLoadRead = false;
+    gGiver = 0u;
+    gGives = false;
+    gReceives = false;
     gTaken = false;
     gOwner = 0u;
     gOwnLow = uvec4(0u);
@@ -730,10 +721,21 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
 #ifndef VITRUM_NO_SUBGROUP_OPERATIONS
         if (kRaySharing) shareRays(hasPixel);
 #endif
-        if (kPendingRayCapacity > 0u && gLoad) {
-            if (gLoadRead) st.ray = readPendingRay(gLoadIndex);
-            beginRay();
+        if (kPendingRayCapacity > 0u) {
+            // The round's one read of a pending ray: the lane's own next one, or the one it gives
+            // to a lane that takes it (ray_sharing.glsl).
+            PendingRay loaded = st.ray;
+            if (gLoad || (kRaySharing && gGives)) loaded = readPendingRay(gLoadIndex);
+#ifndef VITRUM_NO_SUBGROUP_OPERATIONS
+            if (kRaySharing) handOver(loaded);
+#endif
+            if (gLoad || (kRaySharing && gReceives)) {
+                st.ray = loaded;
+                beginRay();
+            }
             gLoad = false;
+            gGives = false;
+            gReceives = false;
         }
         working = st.control.x != kPhaseDone;
         busy = working || gTaken;  // a lane done with a taken tree waits to hand it back
