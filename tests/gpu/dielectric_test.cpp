@@ -174,8 +174,11 @@ TEST(LoopLimit, DriverLimitIsDetectedAndRecovered) {
                 limit ? ("was ended after " + std::to_string(*limit)).c_str() : "ran whole: the driver has no loop limit");
     Scene scene = loadScene(sourcePath("scenes/loop_limit.json"));
     RenderPair r = renderBoth(scene, VulkanRenderOptions{.iterationBudget = 1u << 20});
-    if (limit) EXPECT_GT(r.gpuStats.limits.loopLimitSuspected, 0u);
-    else EXPECT_EQ(r.gpuStats.limits.loopLimitSuspected, 0u);
+    if (limit) {
+        EXPECT_GT(r.gpuStats.limits.loopLimitSuspected, 0u);
+    } else {
+        EXPECT_EQ(r.gpuStats.limits.loopLimitSuspected, 0u);
+    }
     expectImagesMatch(r);
 }
 
@@ -190,7 +193,9 @@ TEST(LoopLimit, BudgetsCountTheGroupsIterationsSoTheDriverNeverCutsThem) {
     if (!testDevice().hasSubgroupArithmeticAndBallot()) GTEST_SKIP() << "the device has no subgroup arithmetic";
     const std::optional<std::uint32_t> limit = probeLoopLimit(testDevice(), kLoopProbeIterations);
     // Mesa 22.3's lavapipe runs a loop's body once and repeats it 65,535 times.
-    if (limit) EXPECT_EQ(*limit, 65536u) << "a loop limit other than Mesa 22.3 lavapipe's";
+    if (limit) {
+        EXPECT_EQ(*limit, 65536u) << "a loop limit other than Mesa 22.3 lavapipe's";
+    }
     Scene scene = loadScene(sourcePath("scenes/loop_limit.json"));
     const Bvh bvh = buildBvh(scene.triangles);
     RenderStats group, lane;
@@ -199,8 +204,11 @@ TEST(LoopLimit, BudgetsCountTheGroupsIterationsSoTheDriverNeverCutsThem) {
                  VulkanRenderOptions{.iterationBudget = 65400, .statisticsSums = StatisticsSums::atomics}, lane);
     EXPECT_GT(group.restartedPixels, 0u);  // the budget was reached
     EXPECT_EQ(group.limits.loopLimitSuspected, 0u);
-    if (limit) EXPECT_GT(lane.limits.loopLimitSuspected, 0u);
-    else EXPECT_EQ(lane.limits.loopLimitSuspected, 0u);
+    if (limit) {
+        EXPECT_GT(lane.limits.loopLimitSuspected, 0u);
+    } else {
+        EXPECT_EQ(lane.limits.loopLimitSuspected, 0u);
+    }
 }
 
 // A budget of a few steps gives up nearly every pixel in the first dispatch and suspends it again

@@ -3,6 +3,7 @@
 // (VITRUM_VALIDATION=1 from tests/CMakeLists.txt); any validation message fails the test.
 #pragma once
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -36,6 +38,17 @@ inline nlohmann::json countersWithoutTimes(const RenderStats& stats, std::initia
     json.erase("seconds");
     for (const char* key : without) json.erase(key);
     return json;
+}
+
+// The JSON scenes of scenes/ and scenes/course/, as paths relative to the source folder, sorted.
+inline std::vector<std::string> projectScenes() {
+    std::vector<std::string> scenes;
+    for (const char* folder : {"scenes", "scenes/course"})
+        for (const auto& entry : std::filesystem::directory_iterator(sourcePath(folder)))
+            if (entry.path().extension() == ".json")
+                scenes.push_back(std::string(folder) + "/" + entry.path().filename().string());
+    std::sort(scenes.begin(), scenes.end());
+    return scenes;
 }
 
 inline VulkanDevice& testDevice() {

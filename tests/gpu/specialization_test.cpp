@@ -10,16 +10,6 @@
 namespace vitrum::testing {
 namespace {
 
-std::vector<std::string> projectScenes() {
-    std::vector<std::string> scenes;
-    for (const char* folder : {"scenes", "scenes/course"})
-        for (const auto& entry : std::filesystem::directory_iterator(sourcePath(folder)))
-            if (entry.path().extension() == ".json")
-                scenes.push_back(std::string(folder) + "/" + entry.path().filename().string());
-    std::sort(scenes.begin(), scenes.end());
-    return scenes;
-}
-
 Image renderOnGpu(const Scene& scene, const Bvh& bvh, bool specialize, RenderStats& stats) {
     VulkanRenderOptions options;
     options.specialize = specialize;
