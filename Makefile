@@ -47,7 +47,7 @@ bench-specialization: build
 	  $(BUILD)/bench/vitrum_bench_specialization docs/specialization.md $(BENCH_RUNS)
 
 # Needs Embree 3 (bench/install-deps); cmake runs again so that it finds it.
-bench-performance: build
+bench-performance: drivers build
 	@./bench/install-deps
 	cmake -S . -B $(BUILD) > /dev/null
 	cmake --build $(BUILD) -j $(JOBS) --target vitrum_bench_bvh vitrum_bench_primary_rays vitrum_bench_whitted
@@ -56,6 +56,8 @@ bench-performance: build
 	  $(BUILD)/bench/vitrum_bench_primary_rays $(BENCH_RUNS) >> docs/performance.md.partial
 	VK_ICD_FILENAMES=$${VK_ICD_FILENAMES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json} \
 	  $(BUILD)/bench/vitrum_bench_whitted $(BENCH_RUNS) >> docs/performance.md.partial
+	echo >> docs/performance.md.partial
+	./bench/compare-drivers $(BENCH_RUNS) >> docs/performance.md.partial
 	mv docs/performance.md.partial docs/performance.md
 
 # The accuracy study: docs/accuracy-vs-time.md and docs/study/ (8.5-25 minutes on 2 cores).
