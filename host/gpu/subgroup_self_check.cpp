@@ -7,6 +7,7 @@
 
 #include "gpu/compute_pipeline.h"
 #include "gpu/gpu_buffer.h"
+#include "gpu/trace_pipeline.h"
 #include "gpu/vulkan_device.h"
 #include "shared/subgroup_check_types.h"
 #include "subgroup_check.spv.h"
@@ -14,10 +15,10 @@
 namespace vitrum {
 namespace {
 
-// Two workgroups of 8x8 (16 subgroups of lavapipe's 8 lanes) take 64 units: each subgroup takes
-// several, in whatever order the device's threads run them.
+// Two workgroups of trace.comp's 8x8 (16 subgroups of lavapipe's 8 lanes) take 64 units: each
+// subgroup takes several, in whatever order the device's threads run them.
 constexpr std::uint32_t kWorkgroups = 2;
-constexpr std::uint32_t kInvocationsPerWorkgroup = 64;
+constexpr std::uint32_t kInvocationsPerWorkgroup = kTraceGroupSize * kTraceGroupSize;
 constexpr std::uint32_t kUnits = 64;
 
 struct LaneResult {
@@ -55,7 +56,7 @@ std::vector<LaneResult> expectedUnit(std::uint32_t unit, std::uint32_t lanes) {
 
 SubgroupSelfCheck checkSubgroupMachinery(VulkanDevice& device, bool subgroupBarrier, bool injectFault) {
     const std::uint32_t lanes = device.subgroups().size;
-    if (!device.hasFullSubgroups() || lanes == 0 || kInvocationsPerWorkgroup % device.maxSubgroupSize() != 0)
+    if (statisticsSumsFor(device, StatisticsSums::shuffles) != StatisticsSums::shuffles)
         return {false, "the device cannot run the kernel in full subgroups"};
     const std::array<VkDescriptorType, 2> bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                                       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};

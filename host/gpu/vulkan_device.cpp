@@ -9,6 +9,7 @@
 
 #include "common/error.h"
 #include "gpu/subgroup_self_check.h"
+#include "gpu/trace_pipeline.h"
 #include "gpu/vulkan_error.h"
 
 namespace vitrum {
@@ -303,11 +304,16 @@ VulkanDevice::~VulkanDevice() { release(); }
 // The fast kernel relies on full subgroups doing what the self-check does; a device that fails it
 // is treated as one without them, so every kernel it gets is the safe one, with one warning.
 void VulkanDevice::chooseKernelPath() {
-    if (!subgroups().fullSubgroups) {
-        kernelPath_ = subgroups().arithmeticAndBallot
-                          ? "safe: statistics summed by subgroupAdd (the device cannot require full subgroups)"
-                          : "safe: one atomic a counter (the device has no subgroup arithmetic and ballots)";
-        return;
+    switch (statisticsSumsFor(subgroups(), StatisticsSums::shuffles)) {
+        case StatisticsSums::atomics:
+            kernelPath_ = "safe: one atomic a counter and lane (the device has no subgroup arithmetic and ballots)";
+            return;
+        case StatisticsSums::subgroupAdd:
+            kernelPath_ = "safe: statistics summed by subgroupAdd (full subgroups need the device to require them, "
+                          "of at most " + std::to_string(kTraceGroupSize) + " lanes: the kernel's workgroup width)";
+            return;
+        case StatisticsSums::shuffles:
+            break;
     }
     const char* fault = std::getenv("VITRUM_SELF_CHECK_FAULT");
     const SubgroupSelfCheck check = checkSubgroupMachinery(*this, false, fault && std::string(fault) == "1");

@@ -205,7 +205,32 @@ TEST_F(Cli, DevicesListsSubgroupsAndLimits) {
                   std::string::npos)
             << r.output;
         EXPECT_NE(r.output.find("storage buffers up to 128 MiB"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("driver: llvmpipe, Mesa "), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("kernel: fast: full subgroups"), std::string::npos) << r.output;
     }
+}
+
+// A device whose subgroups fail the self-check (VITRUM_SELF_CHECK_FAULT=1 makes one lane of it
+// act lost) is listed with the safe kernel and the reason, and a render warns once and still
+// traces every pixel.
+TEST_F(Cli, ADeviceThatFailsTheSelfCheckGetsTheSafeKernelAndSaysWhy) {
+    CommandRun listed = vitrum("devices", "VITRUM_SELF_CHECK_FAULT=1");
+    ASSERT_EQ(listed.exitCode, 0) << listed.output;
+    if (listed.output.find("llvmpipe") == std::string::npos) GTEST_SKIP() << "lavapipe is the device with the fast kernel here";
+    EXPECT_NE(listed.output.find("kernel: safe: statistics summed by subgroupAdd (the self-check of full subgroups failed: "),
+              std::string::npos)
+        << listed.output;
+    CommandRun render = vitrum("render " + std::string(VITRUM_SOURCE_DIR) +
+                                   "/scenes/demo.json --width 64 --height 48 -o " + path("demo.pfm") + " --stats " +
+                                   path("demo.json"),
+                               "VITRUM_SELF_CHECK_FAULT=1");
+    ASSERT_EQ(render.exitCode, 0) << render.output;
+    const std::string warning = "failed the self-check of full subgroups";
+    const std::size_t first = render.output.find(warning);
+    EXPECT_NE(first, std::string::npos) << render.output;
+    EXPECT_EQ(render.output.find(warning, first + 1), std::string::npos) << "warned more than once: " << render.output;
+    nlohmann::json stats = nlohmann::json::parse(std::ifstream(path("demo.json")));
+    EXPECT_EQ(stats["rays"]["primary"], 64 * 48);
 }
 
 TEST_F(Cli, InfoReportsTrianglesAndBvh) {
