@@ -21,6 +21,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/file_extension.h"
+#include "common/input_file.h"
 #include "image/declared_size.h"
 #include "image/image.h"
 #include "image/openexr_file.h"
@@ -99,10 +100,7 @@ std::string pfmToken(const std::vector<unsigned char>& bytes, std::size_t& pos) 
 }
 
 Image readPfm(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw inputError(path, 0, std::string("cannot open image: ") + std::strerror(errno));
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw inputError(path, 0, "cannot read image");
+    const std::vector<unsigned char> bytes = readInputFile(path, "the image", kMaxImageFileBytes);
 
     auto corrupt = [&](const std::string& what) { return inputError(path, 0, "corrupt PFM file: " + what); };
     if (bytes.size() < 2 || bytes[0] != 'P' || (bytes[1] != 'F' && bytes[1] != 'f')) {
@@ -175,13 +173,8 @@ struct FileBytes {
 };
 
 FileBytes readFileBytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw inputError(path, 0, std::string("cannot open image: ") + std::strerror(errno));
-    FileBytes file{{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()}};
-    if (in.bad()) throw inputError(path, 0, "cannot read image");
-    if (file.bytes.size() > std::size_t(std::numeric_limits<int>::max()))
-        throw inputError(path, 0, "image file too large (2 GiB at most)");
-    return file;
+    static_assert(kMaxImageFileBytes <= std::uint64_t(std::numeric_limits<int>::max()), "stb takes an int size");
+    return FileBytes{readInputFile(path, "the image", kMaxImageFileBytes)};
 }
 
 // stb decodes whatever size a header declares, reading zeros past the end of a truncated file:
@@ -317,9 +310,7 @@ void writeImage(const Image& image, const fs::path& path) {
 }
 
 Image readImage(const fs::path& path) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw inputError(path, 0, "image file not found");
-    if (fs::is_directory(path, ec)) throw inputError(path, 0, "expected an image file, got a directory");
+    requireRegularFile(path, "the image");  // the OpenEXR library opens it itself
     const std::string ext = lowerCaseExtension(path);
     if (ext == ".pfm") return readPfm(path);
     if (ext == ".exr") return readOpenExr(path);

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 #include <initializer_list>
@@ -15,6 +14,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "scene/json_lines.h"
 #include "scene/obj_loader.h"
 #include "scene/scene_loader.h"
@@ -288,7 +288,9 @@ private:
         fs::path file = string(v, path);
         if (file.is_relative()) file = file_.parent_path() / file;  // relative to the scene file
         std::error_code ec;
-        if (!fs::is_regular_file(file, ec)) fail(path, name(path) + ": no such file \"" + file.string() + "\"");
+        const fs::file_status status = fs::status(file, ec);
+        if (!fs::exists(status)) fail(path, name(path) + ": no such file \"" + file.string() + "\"");
+        if (!fs::is_regular_file(status)) fail(path, name(path) + ": not a regular file \"" + file.string() + "\"");
         return file;
     }
 
@@ -324,12 +326,7 @@ private:
 }  // namespace
 
 Scene readJsonScene(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::error_code ec;
-    if (!fs::is_regular_file(file, ec) || !in) throw inputError(file, 0, "cannot open the scene file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return JsonSceneReader(file, std::move(text).str()).read();
+    return JsonSceneReader(file, readInputText(file, "the scene file", kMaxSceneFileBytes)).read();
 }
 
 }  // namespace vitrum

@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
+#include <sstream>
 #include <string_view>
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "scene/quote_input.h"
 
 namespace vitrum {
@@ -44,8 +45,7 @@ public:
     explicit MtlReader(const std::filesystem::path& path) : path_(path) {}
 
     std::vector<MtlEntry> read() {
-        std::ifstream in(path_, std::ios::binary);
-        if (!in) throw inputError(path_, 0, "cannot open the MTL file");
+        std::istringstream in(readInputText(path_, "the MTL file", kMaxSceneFileBytes));
         std::string text;
         while (std::getline(in, text)) {
             ++line_;

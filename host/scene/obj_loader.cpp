@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <set>
@@ -15,6 +14,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/input_file.h"
 #include "image/image.h"
 #include "scene/mtl_material.h"
 #include "scene/mtl_parser.h"
@@ -25,15 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string readText(const fs::path& file) {
-    std::error_code ec;
-    if (!fs::is_regular_file(file, ec)) throw inputError(file, 0, "cannot open the OBJ file (no such file)");
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw inputError(file, 0, "cannot open the OBJ file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return std::move(text).str();
-}
+std::string readText(const fs::path& file) { return readInputText(file, "the OBJ file", kMaxObjFileBytes); }
 
 std::string_view firstWord(std::string_view line, std::size_t* end = nullptr) {
     std::size_t begin = line.find_first_not_of(" \t");
@@ -245,7 +237,7 @@ void ObjLoader::load(const fs::path& objFile, const ObjOptions& options) {
     LibraryReader reader([&](const std::string& mtllib) -> const Library* {
         fs::path mtlFile = options.mtlOverride ? *options.mtlOverride : objFile.parent_path() / mtllib;
         std::error_code ec;
-        if (!fs::is_regular_file(mtlFile, ec)) {
+        if (!fs::exists(mtlFile, ec)) {  // one that exists but is no regular file is refused when read
             warn(objFile.string() + ": material library \"" + mtlFile.string() +
                  "\" not found; its faces get the default material");
             return nullptr;

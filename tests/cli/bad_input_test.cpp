@@ -11,6 +11,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include "cli_support.h"
 
@@ -258,6 +259,42 @@ TEST_F(CliBadInput, PathsThatDoNotExistAreNamed) {
     r = vitrum("info " + path("nope.obj"));
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find("nope.obj"), std::string::npos) << r.output;
+}
+
+// Files that exist but are no regular files: a FIFO would block the reader for ever, and a device
+// would be read without end (/dev/zero: 8 GB before the size check, once). Each is refused at once,
+// by name, as not a regular file; a texture so named only warns, as an unreadable one does. Every
+// command runs under `timeout 20`, so that a reader that blocks fails the test instead of hanging.
+TEST_F(CliBadInput, FilesThatAreNotRegularAreRefusedAtOnceByName) {
+    const std::string timeout = "timeout 20";
+    ASSERT_EQ(::mkfifo((dir_ / "fifo.json").c_str(), 0600), 0);
+    ASSERT_EQ(::mkfifo((dir_ / "fifo.obj").c_str(), 0600), 0);
+    ASSERT_EQ(::mkfifo((dir_ / "fifo.mtl").c_str(), 0600), 0);
+    ASSERT_EQ(::mkfifo((dir_ / "fifo.png").c_str(), 0600), 0);
+    const std::string fifo = "not a regular file (a FIFO)";
+    expectRefused(path("fifo.json"), {"fifo.json", fifo}, timeout);
+    expectRefused(path("fifo.obj"), {"fifo.obj", fifo}, timeout);
+    CommandRun info = vitrum("info " + path("fifo.json"), timeout);
+    EXPECT_EQ(info.exitCode, 1) << info.output;
+    EXPECT_NE(info.output.find(fifo), std::string::npos) << info.output;
+    expectRefused(write("lib.obj", "mtllib fifo.mtl\n" + kTriangle), {"fifo.mtl", fifo}, timeout);
+    fs::create_directories(dir_ / "folder.mtl");
+    expectRefused(write("lib.obj", "mtllib folder.mtl\n" + kTriangle), {"folder.mtl", "(a directory)"}, timeout);
+    expectRefused(write("s.json", "{\"objects\": [\n{\"obj\": \"/dev/zero\"}]}"),
+                  {"s.json:2:", "not a regular file \"/dev/zero\""}, timeout);
+    expectRefused(write("s.json", "{\"objects\": [\n{\"obj\": \"fifo.obj\"}]}"), {"s.json:2:", "fifo.obj"}, timeout);
+    expectRefused(scene(R"("background": {"spherical": "/dev/zero"})"),
+                  {"/dev/zero", "not a regular file (a character device)"}, timeout);
+    expectRefused(scene(R"("background": {"spherical": "fifo.png"})"), {"fifo.png", fifo}, timeout);
+    for (const std::string texture : {"/dev/zero", "fifo.png"}) {
+        write("t.mtl", "newmtl a\nshader 2\nKd 0.5\nmap_Kd " + texture + "\n");
+        write("t.obj", "mtllib t.mtl\nusemtl a\n" + kTriangle);
+        CommandRun r = vitrum("render " + path("t.obj") + " --backend cpu --width 8 --height 8 -o " + path("t.png"),
+                              timeout);
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_NE(r.output.find("t.mtl:4: texture cannot be read"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("not a regular file"), std::string::npos) << r.output;
+    }
 }
 
 // A name longer than the file system allows (255 bytes a name on Linux): inputs are reported as

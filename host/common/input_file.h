@@ -1,0 +1,29 @@
+// Files a user names (the scene, OBJ, MTL, textures, backgrounds): each is checked to be a
+// regular file before it is read, without blocking, so that a FIFO, a device or a directory is
+// refused at once by name; and it is read with its size limit checked while reading, never
+// after (docs/scene-format.md, "Size limits").
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace vitrum {
+
+// The largest files vitrum reads: a JSON scene or an MTL file; an OBJ file; an image.
+inline constexpr std::uint64_t kMaxSceneFileBytes = std::uint64_t(64) << 20;
+inline constexpr std::uint64_t kMaxObjFileBytes = std::uint64_t(4) << 30;
+inline constexpr std::uint64_t kMaxImageFileBytes = (std::uint64_t(2) << 30) - 1;
+
+// Throws InputError "PATH: cannot open WHAT (no such file)", "... (not a regular file: a FIFO)"
+// and the like unless `path` names a regular file. `what`: "the OBJ file", "the image", ...
+void requireRegularFile(const std::filesystem::path& path, const std::string& what);
+
+// The whole of a regular file of at most `maxBytes`, read without blocking on a FIFO or a device
+// and without reading more than `maxBytes` + 1 bytes of anything. Throws InputError naming it.
+std::vector<unsigned char> readInputFile(const std::filesystem::path& path, const std::string& what,
+                                         std::uint64_t maxBytes);
+std::string readInputText(const std::filesystem::path& path, const std::string& what, std::uint64_t maxBytes);
+
+}  // namespace vitrum
