@@ -10,6 +10,25 @@ int lineOfOffset(std::string_view text, std::size_t offset) {
     return 1 + int(std::count(text.begin(), text.begin() + std::ptrdiff_t(offset), '\n'));
 }
 
+std::size_t offsetBeyondNesting(std::string_view text, int maxDepth) {
+    int depth = 0;
+    bool inString = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (inString) {
+            if (c == '\\') ++i;
+            else if (c == '"') inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > maxDepth) return i;
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return text.size();
+}
+
 std::unordered_map<std::string, int> jsonValueLines(std::string_view text) {
     std::unordered_map<std::string, int> lines;
     std::size_t i = 0;

@@ -43,6 +43,11 @@ public:
     JsonSceneReader(fs::path file, std::string text) : file_(std::move(file)), text_(std::move(text)) {}
 
     Scene read() {
+        // Far beyond any scene's (objects, an entry, its transform, a vector: 4).
+        constexpr int kMaxNesting = 64;
+        if (const std::size_t at = offsetBeyondNesting(text_, kMaxNesting); at < text_.size())
+            throw inputError(file_, lineOfOffset(text_, at),
+                             "nesting deeper than " + std::to_string(kMaxNesting) + " levels");
         json root;
         try {
             root = json::parse(text_);
