@@ -21,6 +21,7 @@
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
 #include "image/image.h"
+#include "scene/camera_check.h"
 #include "scene/scene_loader.h"
 #include "shared/gpu_types.h"
 
@@ -193,10 +194,8 @@ void applyOverrides(const RenderCommand& c, Scene& scene) {
         for (const glm::vec3& p : c.lights) scene.lights.push_back({.position = p, .colour = glm::vec3(1.0f)});
     }
     const Camera& cam = scene.camera;
-    glm::vec3 view = cam.from - cam.at;
-    if (glm::length(view) == 0.0f) throw InputError("the camera's from and at are the same point");
-    if (glm::length(glm::cross(cam.up, view)) <= 1e-6f * glm::length(cam.up) * glm::length(view))
-        throw InputError("the camera's up vector is parallel to its viewing direction");
+    if (const std::string problem = cameraProblem(cam); !problem.empty())
+        throw InputError("the camera (--camera-from, --camera-at, --camera-up or the scene's): " + problem);
     if (std::uint64_t(cam.width) * cam.height > (1ull << 28))
         throw InputError("the image is too large: " + std::to_string(cam.width) + "x" + std::to_string(cam.height));
 }

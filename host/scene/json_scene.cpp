@@ -15,6 +15,7 @@
 
 #include "common/error.h"
 #include "common/input_file.h"
+#include "scene/camera_check.h"
 #include "scene/json_lines.h"
 #include "scene/obj_loader.h"
 #include "scene/scene_loader.h"
@@ -260,13 +261,11 @@ private:
                 *x, path + "/fov_y", validFovY, std::string("a number ") + kFovYRange));
         if (const json* x = member(v, "width")) c.width = integer(*x, path + "/width", 1, int(kMaxImageSide));
         if (const json* x = member(v, "height")) c.height = integer(*x, path + "/height", 1, int(kMaxImageSide));
-        const glm::vec3 view = c.from - c.at;
-        if (!(glm::length(view) > 0.0f)) fail(path + "/at", "\"at\" must differ from \"from\"");
-        const float upLength = glm::length(c.up);
-        if (!(upLength > 0.0f) || glm::length(glm::cross(c.up / upLength, glm::normalize(view))) < 1e-6f) {
+        if (const std::string problem = cameraProblem(c); !problem.empty()) {
             const json* up = member(v, "up");
-            fail(up ? path + "/up" : path,
-                 "\"up\" must not be zero or parallel to from - at, got " + (up ? shown(*up) : "the default [0,0,1]"));
+            if (problem.rfind("\"up\"", 0) == 0)
+                fail(up ? path + "/up" : path, problem + ", got " + (up ? shown(*up) : "the default [0,0,1]"));
+            fail(path + "/at", problem);
         }
         return c;
     }

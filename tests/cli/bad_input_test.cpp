@@ -216,6 +216,19 @@ TEST_F(CliBadInput, DeepNestingIsRefusedAtOnce) {
                   {"scene.json:2:", "nesting deeper than 64 levels"}, "timeout 20");
 }
 
+// Camera numbers whose arithmetic overflows float: refused, saying what overflowed, never a
+// black image (from and at 6e38 apart rendered one) nor the wrong reason (from 1e20 away was
+// refused as if up were parallel to the view).
+TEST_F(CliBadInput, CameraNumbersThatOverflowAreRefusedSayingWhat) {
+    expectRefused(write("far.json", "{\"objects\": [{\"obj\": \"tri.obj\"}],\n"
+                                    "\"camera\": {\"from\": [1e20, 1, 1], \"at\": [0, 0, 0]}}"),
+                  {"far.json:2:", "\"from\" and \"at\" are 1e+20 apart", "overflows"});
+    expectRefused(path("tri.obj") + " --camera-from 3e38,0,0 --camera-at -3e38,0,1",
+                  {"--camera-from", "6e+38 apart", "overflows"});
+    expectRefused(path("tri.obj") + " --camera-from 0,-5,0 --camera-at 0,0,0 --camera-up 0,0,1e20",
+                  {"--camera-up", "\"up\" is 1e+20 long"});
+}
+
 // ------------------------------------------------------------------------------------ images
 
 TEST_F(CliBadInput, CorruptOrUnknownImagesAreErrorsNamingTheFile) {
