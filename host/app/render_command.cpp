@@ -200,6 +200,30 @@ void applyOverrides(const RenderCommand& c, Scene& scene) {
         throw InputError("the image is too large: " + std::to_string(cam.width) + "x" + std::to_string(cam.height));
 }
 
+// Said before a render whose work (pixels x samples x depth) is far beyond the usual (a 16384 x
+// 16384 image at 4096 samples was accepted without a word, and took about 15 hours): its size, and
+// a lower bound on its time at the fastest rate lavapipe traces primary rays alone here
+// (docs/performance.md, about 20 Mrays/s).
+std::string largeRenderNote(const Scene& scene) {
+    constexpr double kLargeWork = 1e10;
+    constexpr double kFastestRaysPerSecond = 20e6;
+    const Camera& c = scene.camera;
+    const RenderSettings& s = scene.settings;
+    const double primary = double(c.width) * c.height * s.samplesPerPixel;
+    if (primary * std::max(s.maxDepth, 1u) < kLargeWork) return "";
+    const double seconds = primary / kFastestRaysPerSecond;
+    char time[64];
+    if (seconds < 90.0) std::snprintf(time, sizeof(time), "a minute");
+    else if (seconds < 3600.0) std::snprintf(time, sizeof(time), "%.0f minutes", seconds / 60.0);
+    else std::snprintf(time, sizeof(time), "%.1f hours", seconds / 3600.0);
+    char text[320];
+    std::snprintf(text, sizeof(text),
+                  "a large render: %.3g primary rays (%u x %u pixels x %u samples), each a tree of up to %u levels; "
+                  "at 20 Mrays/s, lavapipe's fastest for primary rays alone, it takes at least %s",
+                  primary, c.width, c.height, s.samplesPerPixel, s.maxDepth, time);
+    return text;
+}
+
 // Refuses a scene whose GPU buffers would not fit the device, from the scene's counts alone: before
 // the BVH build, the packing and the upload (gpu/vulkan_renderer.cpp makes the buffers, and
 // GpuBuffer checks each again then). The BVH has at most 2n - 1 nodes for n triangles.
@@ -261,6 +285,7 @@ int renderCommand(int argc, char** argv, int first) {
     auto start = Clock::now();
     Scene scene = loadScene(command.scenePath);
     applyOverrides(command, scene);
+    if (const std::string note = largeRenderNote(scene); !note.empty()) warn(note);
     double loadSeconds = std::chrono::duration<double>(Clock::now() - start).count();
 
     // The device comes before the BVH build, so that a scene too large for it is refused before

@@ -7,6 +7,22 @@
 
 namespace vitrum {
 
+std::string progressLine(const std::string& label, double fraction, double elapsedSeconds) {
+    fraction = fraction < 0 ? 0 : (fraction > 1 ? 1 : fraction);
+    constexpr int kWidth = 30;
+    const int filled = int(fraction * kWidth);
+    std::string bar(kWidth, '.');
+    bar.replace(0, std::size_t(filled), std::size_t(filled), '#');
+    // The time left is padded to one width, so that a shorter line leaves nothing of a longer one.
+    char left[64] = "estimating the time left";
+    if (fraction >= 0.01 && elapsedSeconds >= 2.0)
+        std::snprintf(left, sizeof(left), "~%.1fs left", elapsedSeconds * (1.0 - fraction) / fraction);
+    char line[256];
+    std::snprintf(line, sizeof(line), "%s [%s] %5.1f%%  %.1fs elapsed, %-24s ", label.c_str(), bar.c_str(),
+                  100.0 * fraction, elapsedSeconds, left);
+    return line;
+}
+
 ProgressBar::ProgressBar(std::string label)
     : label_(std::move(label)), start_(std::chrono::steady_clock::now()), lastDraw_(start_) {
     const char* env = std::getenv("VITRUM_PROGRESS");
@@ -21,15 +37,7 @@ void ProgressBar::update(double fraction) {
     double elapsed = std::chrono::duration<double>(now - start_).count();
     if (elapsed < 1.0 || now - lastDraw_ < std::chrono::milliseconds(100)) return;
     lastDraw_ = now;
-    fraction = fraction < 0 ? 0 : (fraction > 1 ? 1 : fraction);
-    constexpr int kWidth = 30;
-    int filled = int(fraction * kWidth);
-    char bar[kWidth + 1];
-    for (int i = 0; i < kWidth; ++i) bar[i] = i < filled ? '#' : '.';
-    bar[kWidth] = 0;
-    double eta = fraction > 0.01 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-    std::fprintf(stderr, "\r%s [%s] %5.1f%%  %.1fs elapsed, ~%.1fs left ", label_.c_str(), bar, 100.0 * fraction,
-                 elapsed, eta);
+    std::fprintf(stderr, "\r%s", progressLine(label_, fraction, elapsed).c_str());
     std::fflush(stderr);
     drawn_ = true;
 }

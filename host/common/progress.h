@@ -7,6 +7,11 @@
 
 namespace vitrum {
 
+// The line drawn for `fraction` (0..1) done after `elapsedSeconds`: the time left is estimated
+// from the rate so far only once 1% is done and 2 s have passed; before that it says
+// "estimating" (a first tile of glass can take as long as the rest).
+std::string progressLine(const std::string& label, double fraction, double elapsedSeconds);
+
 class ProgressBar {
 public:
     explicit ProgressBar(std::string label);

@@ -229,6 +229,23 @@ TEST_F(CliBadInput, CameraNumbersThatOverflowAreRefusedSayingWhat) {
                   {"--camera-up", "\"up\" is 1e+20 long"});
 }
 
+// A render far larger than usual says so before it starts, with its size and a lower bound on its
+// time (a 16384 x 16384 render at 4096 samples, about 15 hours, once started without a word). The
+// render itself is not waited for: `timeout` ends it.
+TEST_F(CliBadInput, AFarLargerRenderThanUsualSaysItsSizeUpFront) {
+    CommandRun r = vitrum("render " + path("tri.obj") + " --backend cpu --width 1024 --height 1024 --spp 4096 -o " +
+                              path("out.png"),
+                          "timeout 3");
+    EXPECT_NE(r.output.find("warning: a large render: 4.29e+09 primary rays (1024 x 1024 pixels x 4096 samples)"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("at least 4 minutes"), std::string::npos) << r.output;
+    CommandRun usual = vitrum("render " + path("tri.obj") + " --backend cpu --width 64 --height 64 --spp 16 -o " +
+                              path("usual.png"));
+    EXPECT_EQ(usual.exitCode, 0) << usual.output;
+    EXPECT_EQ(usual.output.find("a large render"), std::string::npos) << usual.output;
+}
+
 // ------------------------------------------------------------------------------------ images
 
 TEST_F(CliBadInput, CorruptOrUnknownImagesAreErrorsNamingTheFile) {
