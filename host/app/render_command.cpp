@@ -224,6 +224,22 @@ std::string largeRenderNote(const Scene& scene) {
     return text;
 }
 
+// The files of the scene's largest textures, for an error about their buffer: "a.png (4096 x
+// 4096, 192 MiB)" and the next two.
+std::string largestTextures(const Scene& scene) {
+    std::vector<const Texture*> bySize;
+    for (const Texture& texture : scene.textures) bySize.push_back(&texture);
+    std::sort(bySize.begin(), bySize.end(),
+              [](const Texture* a, const Texture* b) { return a->texels.size() > b->texels.size(); });
+    std::string list = bySize.size() == 1 ? "the texture: " : "the largest textures: ";
+    for (std::size_t i = 0; i < std::min<std::size_t>(bySize.size(), 3); ++i) {
+        const Texture& t = *bySize[i];
+        list += (i ? ", " : "") + t.path.string() + " (" + std::to_string(t.width) + " x " + std::to_string(t.height) +
+                ", " + describeBytes(t.texels.size() * 3 * sizeof(float)) + ")";
+    }
+    return list;
+}
+
 // Refuses a scene whose GPU buffers would not fit the device, from the scene's counts alone: before
 // the BVH build, the packing and the upload (gpu/vulkan_renderer.cpp makes the buffers, and
 // GpuBuffer checks each again then). The BVH has at most 2n - 1 nodes for n triangles.
@@ -244,6 +260,7 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         VkDeviceSize bytes;
         BufferKind kind;
         bool perTile = false;  // sized by --tile, not by the scene or the image
+        bool textures = false;  // the scene's textures and environment maps, whose files the error names
     };
     std::vector<Buffer> buffers{
         {"BVH nodes", triangles * sizeof(gpu::TraversalNode), kTexel},  // at most triangles - 1 interior nodes
@@ -251,7 +268,7 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         {"triangle normals and uvs", triangles * sizeof(gpu::TriangleShading), kTexel},
         {"materials", scene.materials.size() * sizeof(gpu::GpuMaterial), kTexel},
         {"lights", scene.lights.size() * sizeof(gpu::GpuLight), kTexel},
-        {"texture texels", texels * 3 * sizeof(float), kStorage},
+        {"texture texels", texels * 3 * sizeof(float), kStorage, false, true},
     };
     for (const TileBuffer& buffer : kTileBuffers)
         buffers.push_back({buffer.what, tilePixels * buffer.bytesPerPixel, kStorage, true});
@@ -260,6 +277,7 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         if (buffer.bytes > bufferLimit(device, buffer.kind).bytes) {
             const InputError error = bufferTooLarge(device, buffer.what, buffer.bytes, buffer.kind);
             if (buffer.perTile) throw InputError(std::string(error.what()) + "; a smaller --tile needs less");
+            if (buffer.textures) throw InputError(std::string(error.what()) + "; " + largestTextures(scene));
             throw error;
         }
         total += buffer.bytes;

@@ -392,9 +392,16 @@ TEST_F(CliBadInput, SceneTooLargeForTheDeviceIsRefusedEarly) {
                   {"pixels of one tile needs 1 MiB", "allows 1000000 bytes", "a smaller --tile needs less"},
                   "VITRUM_MAX_BUFFER_BYTES=1000000");
     // The CPU backend has no such limit.
-    CommandRun r = vitrum("render " + kGeosphere + " --backend cpu --width 8 --height 8 -o " + path("out.png"),
+    CommandRun r = vitrum("render " + kGeosphere + " --backend cpu --width 8 --height 8 -o " + path("cpu.png"),
                           "VITRUM_MAX_BUFFER_BYTES=4096");
     EXPECT_EQ(r.exitCode, 0) << r.output;
+    // Textures too large for their buffer are named, with their sizes (32 x 32 x 3 floats).
+    write("wall.pfm", "PF\n32 32\n-1\n" + std::string(32 * 32 * 3 * sizeof(float), '\0'));
+    write("wall.mtl", "newmtl a\nshader 2\nKd 1 1 1\nmap_Kd wall.pfm\n");
+    write("wall.obj", "mtllib wall.mtl\nusemtl a\nvt 0 0\nvt 1 0\nvt 0 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/2 3/3\n");
+    expectRefused(path("wall.obj") + " --width 16 --height 16",
+                  {"texture texels needs 12288 bytes", "the texture: " + path("wall.pfm") + " (32 x 32, 12288 bytes)"},
+                  "VITRUM_MAX_BUFFER_BYTES=4096");
 }
 
 }  // namespace
