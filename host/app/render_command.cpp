@@ -21,7 +21,7 @@
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
 #include "image/image.h"
-#include "scene/camera_check.h"
+#include "scene/float_range.h"
 #include "scene/scene_loader.h"
 #include "shared/gpu_types.h"
 
@@ -196,6 +196,9 @@ void applyOverrides(const RenderCommand& c, Scene& scene) {
     const Camera& cam = scene.camera;
     if (const std::string problem = cameraProblem(cam); !problem.empty())
         throw InputError("the camera (--camera-from, --camera-at, --camera-up or the scene's): " + problem);
+    for (std::size_t i = 0; i < scene.lights.size(); ++i)
+        if (const std::string problem = lightProblem(scene, i); !problem.empty())
+            throw InputError("light " + std::to_string(i + 1) + " (--light or the scene's): " + problem);
     if (std::uint64_t(cam.width) * cam.height > (1ull << 28))
         throw InputError("the image is too large: " + std::to_string(cam.width) + "x" + std::to_string(cam.height));
 }

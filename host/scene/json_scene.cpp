@@ -15,7 +15,7 @@
 
 #include "common/error.h"
 #include "common/input_file.h"
-#include "scene/camera_check.h"
+#include "scene/float_range.h"
 #include "scene/json_lines.h"
 #include "scene/obj_loader.h"
 #include "scene/scene_loader.h"
@@ -79,6 +79,9 @@ public:
 
         ObjLoader loader(scene);
         for (const ObjectSpec& spec : specs) loader.load(spec.obj, spec.options);
+        for (std::size_t i = 0; i < scene.lights.size(); ++i)
+            if (const std::string problem = lightProblem(scene, i); !problem.empty())
+                fail("/lights/" + std::to_string(i) + "/position", problem);
         if (!cameraValue) {
             // The automatic camera comes with its own light unless the file lists lights.
             std::vector<PointLight> listed = scene.lights;

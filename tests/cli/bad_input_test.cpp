@@ -216,17 +216,22 @@ TEST_F(CliBadInput, DeepNestingIsRefusedAtOnce) {
                   {"scene.json:2:", "nesting deeper than 64 levels"}, "timeout 20");
 }
 
-// Camera numbers whose arithmetic overflows float: refused, saying what overflowed, never a
-// black image (from and at 6e38 apart rendered one) nor the wrong reason (from 1e20 away was
-// refused as if up were parallel to the view).
-TEST_F(CliBadInput, CameraNumbersThatOverflowAreRefusedSayingWhat) {
+// Camera and light numbers whose arithmetic overflows float: refused, saying what overflowed,
+// never a black image (from and at 6e38 apart rendered one) nor the wrong reason (from 1e20 away
+// was refused as if up were parallel to the view).
+TEST_F(CliBadInput, CameraAndLightNumbersThatOverflowAreRefusedSayingWhat) {
     expectRefused(write("far.json", "{\"objects\": [{\"obj\": \"tri.obj\"}],\n"
                                     "\"camera\": {\"from\": [1e20, 1, 1], \"at\": [0, 0, 0]}}"),
-                  {"far.json:2:", "\"from\" and \"at\" are 1e+20 apart", "overflows"});
+                  {"far.json:2:", "\"from\" and \"at\" are apart by 1e+20", "overflows"});
     expectRefused(path("tri.obj") + " --camera-from 3e38,0,0 --camera-at -3e38,0,1",
-                  {"--camera-from", "6e+38 apart", "overflows"});
+                  {"--camera-from", "apart by 6e+38", "overflows"});
     expectRefused(path("tri.obj") + " --camera-from 0,-5,0 --camera-at 0,0,0 --camera-up 0,0,1e20",
-                  {"--camera-up", "\"up\" is 1e+20 long"});
+                  {"--camera-up", "\"up\" is as long as 1e+20"});
+    // A light 3e38 away lit nothing, without a word.
+    expectRefused(scene(R"("lights": [{"position": [3, 0, 5]},
+{"position": [3e38, 0, 5]}])"),
+                  {"scene.json:3:", "the light is as far from the scene's triangles as 3e+38"});
+    expectRefused(path("tri.obj") + " --light 3e38,0,5", {"light 1 (--light", "3e+38"});
 }
 
 // A render far larger than usual says so before it starts, with its size and a lower bound on its

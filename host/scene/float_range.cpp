@@ -1,0 +1,58 @@
+#include "scene/float_range.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <glm/glm.hpp>
+
+namespace vitrum {
+namespace {
+
+// A float vector's squared length must be a finite float for glm::normalize to work on it.
+const double kLargestLength = std::sqrt(double(std::numeric_limits<float>::max()));
+
+std::string shortNumber(double x) {
+    std::ostringstream s;
+    s.precision(3);
+    s << x;
+    return s.str();
+}
+
+std::string beyondFloat(double length) {
+    return shortNumber(length) + ": the renderers' float arithmetic overflows beyond " + shortNumber(kLargestLength);
+}
+
+}  // namespace
+
+std::string cameraProblem(const Camera& camera) {
+    const glm::dvec3 view = glm::dvec3(camera.from) - glm::dvec3(camera.at);
+    const double distance = glm::length(view);
+    if (!(distance > 0.0)) return "\"at\" must differ from \"from\"";
+    if (distance >= kLargestLength) return "\"from\" and \"at\" are apart by " + beyondFloat(distance);
+    const double upLength = glm::length(glm::dvec3(camera.up));
+    if (!(upLength > 0.0)) return "\"up\" must not be zero";
+    if (upLength >= kLargestLength) return "\"up\" is as long as " + beyondFloat(upLength);
+    if (glm::length(glm::cross(glm::dvec3(camera.up) / upLength, view / distance)) < 1e-6)
+        return "\"up\" must not be parallel to from - at";
+    return "";
+}
+
+std::string lightProblem(const Scene& scene, std::size_t index) {
+    glm::dvec3 low(std::numeric_limits<double>::max()), high(std::numeric_limits<double>::lowest());
+    for (const Triangle& t : scene.triangles)
+        for (const glm::vec3& p : t.position) {
+            low = glm::min(low, glm::dvec3(p));
+            high = glm::max(high, glm::dvec3(p));
+        }
+    const glm::dvec3 light(scene.lights[index].position);
+    if (scene.triangles.empty()) low = high = light;
+    // The farthest corner of the box from the light: along each axis, the farther of the two ends.
+    const glm::dvec3 far = glm::max(glm::abs(light - low), glm::abs(light - high));
+    const double distance = glm::length(far);
+    if (distance >= kLargestLength) return "the light is as far from the scene's triangles as " + beyondFloat(distance);
+    return "";
+}
+
+}  // namespace vitrum
