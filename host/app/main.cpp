@@ -2,6 +2,7 @@
 #include <cstring>
 #include <exception>
 #include <iostream>
+#include <new>
 #include <string>
 
 #include "app/commands.h"
@@ -41,6 +42,13 @@ int main(int argc, char** argv) {
         return 1;
     } catch (const vitrum::InputError& e) {
         std::cerr << "vitrum: error: " << e.what() << "\n";
+        return 1;
+    } catch (const std::bad_alloc&) {
+        // The input's size, not a bug: the command line names the input (loadScene says which
+        // scene where loading it ran out).
+        std::cerr << "vitrum: error: not enough memory for";
+        for (int i = 1; i < argc; ++i) std::cerr << " " << argv[i];
+        std::cerr << "\n";
         return 1;
     } catch (const vitrum::VulkanError& e) {
         std::cerr << "vitrum: Vulkan error: " << e.what() << "\n";

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <new>
 #include <iostream>
 #include <optional>
 #include <vector>
@@ -320,13 +321,13 @@ int renderCommand(int argc, char** argv, int first) {
         checkSceneFitsDevice(*device, scene, command.gpu);
     }
 
-    Bvh bvh = buildBvh(scene.triangles);
-
     RenderStats stats;
     stats.addPhase("load", loadSeconds);
-    stats.addPhase("bvh", bvh.stats.buildSeconds);
     Image image;
-    {
+    Bvh bvh;
+    try {
+        bvh = buildBvh(scene.triangles);
+        stats.addPhase("bvh", bvh.stats.buildSeconds);
         ProgressBar progress("rendering");
         auto onProgress = [&](double fraction) { progress.update(fraction); };
         if (command.backend == Backend::Vulkan) {
@@ -342,6 +343,10 @@ int renderCommand(int argc, char** argv, int first) {
                                      .progress = onProgress};
             image = renderReference(scene, bvh, options, stats);
         }
+    } catch (const std::bad_alloc&) {
+        throw InputError(command.scenePath + ": not enough memory to render it (" + std::to_string(scene.triangles.size()) +
+                         " triangles, " + std::to_string(scene.camera.width) + " x " +
+                         std::to_string(scene.camera.height) + " pixels)");
     }
     auto writeStart = Clock::now();
     writeImage(image, command.outputPath);

@@ -44,13 +44,19 @@ Scene loadScene(const std::filesystem::path& path) {
     std::error_code error;
     if (std::filesystem::is_directory(path, error)) refuseFolder(path);
     std::string extension = lowerCaseExtension(path);
-    if (extension == ".json") return readJsonScene(path);
-    if (extension == ".obj") {
-        Scene scene;
-        scene.source = path;
-        ObjLoader(scene).load(path);
-        frameAutomatically(scene);
-        return scene;
+    // Running out of memory is the input's size, not a bug: say which scene (it was "internal
+    // error: std::bad_alloc", naming nothing).
+    try {
+        if (extension == ".json") return readJsonScene(path);
+        if (extension == ".obj") {
+            Scene scene;
+            scene.source = path;
+            ObjLoader(scene).load(path);
+            frameAutomatically(scene);
+            return scene;
+        }
+    } catch (const std::bad_alloc&) {
+        throw inputError(path, 0, "not enough memory to load the scene (its files, textures and triangles)");
     }
     throw inputError(path, 0, "unknown scene format \"" + extension + "\": expected a .json scene or an .obj file");
 }

@@ -4,6 +4,7 @@
 // Unknown keys and unreadable textures are the exceptions that only warn.
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
@@ -249,6 +250,28 @@ TEST_F(CliBadInput, AFarLargerRenderThanUsualSaysItsSizeUpFront) {
                               path("usual.png"));
     EXPECT_EQ(usual.exitCode, 0) << usual.output;
     EXPECT_EQ(usual.output.find("a large render"), std::string::npos) << usual.output;
+}
+
+// Running out of memory is the input's size, not a bug: an OBJ of 600,000 triangles under a
+// 200 MB address-space limit is refused naming the file, with exit 1, not "internal error:
+// std::bad_alloc" with exit 3.
+TEST_F(CliBadInput, RunningOutOfMemoryNamesTheInput) {
+    if (std::getenv("ASAN_OPTIONS")) GTEST_SKIP() << "AddressSanitizer reserves more address space than the limit";
+    std::string obj;
+    constexpr int kVertices = 600000;
+    for (int i = 0; i < kVertices; ++i) obj += "v " + std::to_string(i) + " 0 " + std::to_string(i % 7) + "\n";
+    for (int i = 1; i + 2 <= kVertices; ++i)
+        obj += "f " + std::to_string(i) + " " + std::to_string(i + 1) + " " + std::to_string(i + 2) + "\n";
+    write("huge.obj", obj);
+    for (const std::string& command : {"info " + path("huge.obj"), "render " + path("huge.obj") + " -o " + path("out.png")}) {
+        CommandRun r = vitrum(command, "ulimit -v 200000;");
+        EXPECT_EQ(r.exitCode, 1) << command << "\n" << r.output;
+        EXPECT_NE(r.output.find("vitrum: error: "), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("not enough memory"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("huge.obj"), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
+    }
+    expectNoOutput();
 }
 
 // ------------------------------------------------------------------------------------ images
