@@ -73,8 +73,8 @@ void placePendingRays(uint slot) {
 }
 
 // The pending ray read this round, at its one load site (main's loop, after shading, where a lane
-// that takes another's ray reads it too): on lavapipe every storage-buffer load site is a loop
-// over the lanes each round, whether a lane loads or not.
+// that gives one of its rays to another reads it too, ray_sharing.glsl): on lavapipe every
+// storage-buffer load site is a loop over the lanes each round, whether a lane loads or not.
 uint gLoadIndex = 0u;
 bool gLoad = false;
 // This pixel's BVH traversal stack, in private memory while the kernel runs: on lavapipe that is
