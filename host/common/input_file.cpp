@@ -102,4 +102,13 @@ std::string readInputText(const std::filesystem::path& path, const std::string& 
     return std::string(bytes.begin(), bytes.end());
 }
 
+std::string readInputLines(const std::filesystem::path& path, const std::string& what, std::uint64_t maxBytes) {
+    std::string text = readInputText(path, what, maxBytes);
+    if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+    const bool wide = text.rfind("\xFF\xFE", 0) == 0 || text.rfind("\xFE\xFF", 0) == 0 ||
+                      text.rfind(std::string("\0\0\xFE\xFF", 4), 0) == 0;
+    if (wide) throw inputError(path, 0, "cannot read " + what + ": it is UTF-16 or UTF-32 text; vitrum reads ASCII and UTF-8");
+    return text;
+}
+
 }  // namespace vitrum

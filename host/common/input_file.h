@@ -26,4 +26,9 @@ std::vector<unsigned char> readInputFile(const std::filesystem::path& path, cons
                                          std::uint64_t maxBytes);
 std::string readInputText(const std::filesystem::path& path, const std::string& what, std::uint64_t maxBytes);
 
+// readInputText for the line-based text formats (OBJ, MTL): a UTF-8 byte order mark is dropped
+// (tinyobjloader read "<BOM>v 0 0 5" as an unknown statement and lost the vertex, so every face
+// used the wrong vertices, without an error), and UTF-16 or UTF-32 text is refused by name.
+std::string readInputLines(const std::filesystem::path& path, const std::string& what, std::uint64_t maxBytes);
+
 }  // namespace vitrum

@@ -45,7 +45,7 @@ public:
     explicit MtlReader(const std::filesystem::path& path) : path_(path) {}
 
     std::vector<MtlEntry> read() {
-        std::istringstream in(readInputText(path_, "the MTL file", kMaxSceneFileBytes));
+        std::istringstream in(readInputLines(path_, "the MTL file", kMaxSceneFileBytes));
         std::string text;
         while (std::getline(in, text)) {
             ++line_;

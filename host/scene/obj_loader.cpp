@@ -9,6 +9,7 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -25,7 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string readText(const fs::path& file) { return readInputText(file, "the OBJ file", kMaxObjFileBytes); }
+std::string readText(const fs::path& file) { return readInputLines(file, "the OBJ file", kMaxObjFileBytes); }
 
 std::string_view firstWord(std::string_view line, std::size_t* end = nullptr) {
     std::size_t begin = line.find_first_not_of(" \t");
@@ -52,6 +53,9 @@ std::size_t exponentDigits(std::string_view number) {
 // with overflows) are checked here first. Also notes the
 // mtllib and usemtl statements, and a line that can hold an inserted mtllib statement.
 struct ObjScan {
+    // The v, vn and vt statements: what tinyobjloader returns is checked against them, since a line
+    // it reads differently from this scan would shift every index after it, without an error.
+    std::size_t vertices = 0, normals = 0, texcoords = 0;
     std::vector<std::size_t> skinWeights;  // where each "vw" statement begins
     bool hasMtllib = false;
     std::vector<std::string> usemtlNames;
@@ -75,6 +79,7 @@ ObjScan scanObj(const fs::path& file, std::string_view text) {
                 scan.freeLineEnd = begin + line.size();
             }
         } else if (word == "v") {
+            ++scan.vertices;
             std::string_view rest = line.substr(wordEnd);
             for (int i = 0; i < 3; ++i) {
                 std::size_t numberEnd = 0;
@@ -110,6 +115,8 @@ ObjScan scanObj(const fs::path& file, std::string_view text) {
                 rest = rest.substr(cornerEnd);
             }
         } else if (word == "vn" || word == "vt" || word == "vp") {
+            if (word == "vn") ++scan.normals;
+            if (word == "vt") ++scan.texcoords;
             // tinyobjloader reads an exponent into an int that overflows (undefined behaviour) at
             // ten digits or more (found by fuzzing); such a number is 0 or infinite anyway.
             for (std::string_view rest = line.substr(wordEnd);;) {
@@ -279,6 +286,13 @@ void ObjLoader::load(const fs::path& objFile, const ObjOptions& options) {
     const int vertexCount = int(attrib.vertices.size() / 3);
     const int normalCount = int(attrib.normals.size() / 3);
     const int uvCount = int(attrib.texcoords.size() / 2);
+    for (const auto& [kind, read, lines] : {std::tuple{"vertices", std::size_t(vertexCount), scan.vertices},
+                                            std::tuple{"normals", std::size_t(normalCount), scan.normals},
+                                            std::tuple{"texture coordinates", std::size_t(uvCount), scan.texcoords}})
+        if (read != lines)
+            throw inputError(objFile, 0, std::string("the OBJ reader returned ") + std::to_string(read) + " " + kind +
+                                             " where the file has " + std::to_string(lines) +
+                                             " statements for them: some line is not what it seems");
     const std::size_t firstTriangle = scene_.triangles.size();
 
     for (std::size_t s = 0; s < shapes.size(); ++s) {

@@ -126,6 +126,28 @@ TEST(SceneObj, NormalsUvsAndPolygons) {
     EXPECT_EQ(scene.materials[a.material].model, MaterialModel::Lambert);
 }
 
+// A UTF-8 byte order mark made tinyobjloader read the first line as an unknown statement: the
+// vertex was lost and the face used the next three, without an error. It is dropped now (in MTL
+// files too, where it lost the first material), and UTF-16 text is refused.
+TEST(SceneObj, AByteOrderMarkLosesNoVertexAndUtf16IsRefused) {
+    const fs::path dir = tempDir();
+    write(dir / "m.mtl", "\xEF\xBB\xBFnewmtl red\nshader 2\nKd 1 0 0\n");
+    const Scene scene = loadScene(write(dir / "bom.obj", "\xEF\xBB\xBFv 0 0 5\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                                         "mtllib m.mtl\nusemtl red\nf 1 2 3\n"));
+    ASSERT_EQ(scene.triangles.size(), 1u);
+    EXPECT_EQ(scene.triangles[0].position[0], glm::vec3(0, 0, 5));
+    EXPECT_EQ(scene.triangles[0].position[1], glm::vec3(0, 0, 0));
+    EXPECT_EQ(scene.materials.at(scene.triangles[0].material).name, "red");
+    try {
+        loadScene(write(dir / "wide.obj", std::string("\xFF\xFEv\0 \0" "1\0", 7)));
+        ADD_FAILURE() << "UTF-16 text was read";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("wide.obj: cannot read the OBJ file: it is UTF-16 or UTF-32 text"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(SceneObj, ZeroAreaTriangleIsKeptWithAUnitNormal) {
     fs::path obj = write(tempDir() / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
     Scene scene = loadScene(obj);
