@@ -28,6 +28,7 @@
 #include "image/png_chunks.h"
 #include "image/png_writer.h"
 #include "image/pnm_file.h"
+#include "image/radiance_extent.h"
 #include "image/srgb.h"
 
 namespace vitrum {
@@ -192,6 +193,10 @@ Image readLinearHdr(const fs::path& path, const FileBytes& file) {
     int w = 0;
     int h = 0;
     int n = 0;
+    if (stbi_info_from_memory(file.data(), file.size(), &w, &h, &n) &&
+        radianceExtent(file.bytes, std::uint32_t(w), std::uint32_t(h)) == RadianceExtent::EndsEarly)
+        throw inputError(path, 0, "truncated Radiance HDR file: its " + std::to_string(w) + "x" + std::to_string(h) +
+                                      " pixels need more data than the file holds");
     float* data = stbi_loadf_from_memory(file.data(), file.size(), &w, &h, &n, 3);
     if (!data) throw inputError(path, 0, "cannot read image: " + stbReason());
     Image image(static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h));
@@ -211,7 +216,19 @@ Image readLinearHdr(const fs::path& path, const FileBytes& file) {
     return image;
 }
 
+// PNG and JPEG, the 8- and 16-bit images vitrum reads (docs/scene-format.md). stb_image decodes
+// more (BMP, TGA, GIF, PSD, PIC) but reads zeros past the end of a truncated one and returns it
+// without an error (a BMP cut in half loaded as a half-black map, issue 48): those are refused.
+bool isPngOrJpeg(const FileBytes& file) {
+    const std::vector<unsigned char>& b = file.bytes;
+    static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    if (b.size() >= 8 && std::equal(kPng, kPng + 8, b.begin())) return true;
+    return b.size() >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF;
+}
+
 Image readSrgb(const fs::path& path, const FileBytes& file) {
+    if (!isPngOrJpeg(file))
+        throw inputError(path, 0, "cannot read image: not PNG, JPEG, Radiance HDR, PFM, binary PNM or OpenEXR");
     int w = 0;
     int h = 0;
     int n = 0;

@@ -144,6 +144,47 @@ TEST_F(ImageIoTest, PfmTruncatedIsInputError) {
     EXPECT_NE(message.find("PFM"), std::string::npos) << message;
 }
 
+// stb_image reads zeros past the end of a Radiance file's data and returns the image: one cut
+// short loaded with a black lower part (issue 48). Every cut of a run-length encoded file (64
+// wide) and of a flat one (4 wide) is refused now, and the whole files still load.
+TEST_F(ImageIoTest, RadianceHdrCutShortIsRefusedWherever) {
+    for (const std::uint32_t width : {64u, 4u}) {
+        const fs::path whole = dir_ / ("whole" + std::to_string(width) + ".hdr");
+        writeImage(gradient(width, 32), whole);
+        const Image read = readImage(whole);
+        ASSERT_EQ(read.width, width);
+        std::ifstream in(whole, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::size_t dataStart = bytes.find('\n', bytes.find("\n\n") + 2) + 1;
+        int cuts = 0;
+        for (std::size_t end = dataStart; end < bytes.size(); end += 7, ++cuts) {
+            const fs::path cut = dir_ / "cut.hdr";
+            writeBytes(cut, bytes.substr(0, end));
+            const std::string message = exceptionMessage([&] { readImage(cut); });
+            EXPECT_NE(message.find("truncated Radiance HDR file"), std::string::npos)
+                << "width " << width << ", cut at " << end << " of " << bytes.size() << ": " << message;
+        }
+        EXPECT_GT(cuts, 20);
+    }
+}
+
+// stb_image also decodes BMP, TGA, GIF, PSD and PIC, and reads zeros past the end of a truncated
+// one without an error: vitrum reads PNG and JPEG (docs/scene-format.md) and refuses the rest.
+TEST_F(ImageIoTest, ImageFormatsBeyondTheDocumentedOnesAreRefused) {
+    std::string bmp = "BM";
+    bmp.resize(54 + 4 * 4 * 3, '\0');
+    const std::uint32_t header[] = {std::uint32_t(bmp.size()), 0, 54, 40, 4, 4};
+    std::memcpy(bmp.data() + 2, header, sizeof(header));
+    bmp[26] = 1;   // planes
+    bmp[28] = 24;  // bits a pixel
+    const fs::path path = dir_ / "map.bmp";
+    writeBytes(path, bmp);
+    const std::string message = exceptionMessage([&] { readImage(path); });
+    EXPECT_NE(message.find("map.bmp: cannot read image: not PNG, JPEG, Radiance HDR, PFM, binary PNM or OpenEXR"),
+              std::string::npos)
+        << message;
+}
+
 TEST_F(ImageIoTest, HdrRoundTripWithinRgbePrecision) {
     Image image(16, 4);
     for (std::uint32_t y = 0; y < 4; ++y) {
