@@ -17,7 +17,8 @@ std::string describeSize(std::uint64_t bytes) {
     if (bytes >= (std::uint64_t(1) << 30) && bytes % (std::uint64_t(1) << 30) == 0)
         return std::to_string(bytes >> 30) + " GiB";
     if (bytes + 1 >= (std::uint64_t(1) << 30)) return std::to_string((bytes + 1) >> 30) + " GiB";
-    return std::to_string(bytes >> 20) + " MiB";
+    if (bytes >= (std::uint64_t(1) << 20)) return std::to_string(bytes >> 20) + " MiB";
+    return std::to_string(bytes) + " bytes";
 }
 
 const char* kindOf(mode_t mode) {
