@@ -1,7 +1,8 @@
 #version 460
 // Whether the driver ends a shader's loops early, and where (host/gpu/test_kernels.h's
 // probeLoopLimit): one subgroup runs a loop of `requested` iterations and writes how many it ran.
-// Mesa 22.3's lavapipe ends a shader's loops after 65,535 iterations; Mesa 25.0's does not.
+// Mesa 22.3's lavapipe ends a shader's loops after 65,535 repeats (65,536 passes of a do-while);
+// Mesa 25.0's does not.
 // The loop carries a recurrence no compiler folds, so every iteration runs.
 layout(local_size_x = 8) in;
 

@@ -6,8 +6,9 @@
 // (docs/gpu-design.md). A pixel's pending rays (trace.comp's pendingRays, refractions whose
 // reflection went first) are whole ray trees of their own: once a round (trace.comp's main
 // loop), one idle lane takes the bottom pending ray of the lane that has the most (of those that
-// read no ray of their own that round), the one its owner would trace last, traces its tree, and when it is done hands the tree's colour sum and
-// steps back to the lane whose pixel the ray is of (its owner). Pending rays the taker pushes
+// read no ray of their own that round), the one its owner would trace last, traces its tree, and
+// when it is done hands the tree's colour sum and steps back to the lane whose pixel the ray is
+// of (its owner). Pending rays the taker pushes
 // meanwhile can be taken in turn; they are of the same owner. Everything moves between lanes by
 // shuffles, never through memory (handOver says why).
 //

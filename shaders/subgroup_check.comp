@@ -18,17 +18,17 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;  // trace.comp's workgroup
 
+// The pipeline requires full subgroups, as the fast kernel's does: lanes.glsl's functions are
+// then trace.comp's own (butterflies of shuffles, the elected lane's value broadcast).
+const bool kFullSubgroups = true;
+#include "lanes.glsl"
+
 layout(constant_id = 0) const bool kSubgroupBarrier = false;
 
 layout(std430, set = 0, binding = 0) buffer Control { SubgroupCheckControl control; };
 layout(std430, set = 0, binding = 1) buffer Results { SubgroupCheckResult results[]; };
 
-uint groupMax(uint value) {
-    for (uint distance = 1u; distance < gl_SubgroupSize; distance <<= 1u)
-        value = max(value, subgroupShuffleXor(value, distance));
-    return value;
-}
-
+// The butterfly sum of statistics.glsl's addStatistics.
 uint groupSum(uint value) {
     for (uint distance = 1u; distance < gl_SubgroupSize; distance <<= 1u)
         value += subgroupShuffleXor(value, distance);
@@ -38,8 +38,8 @@ uint groupSum(uint value) {
 void main() {
     for (;;) {
         uint unit = 0u;
-        if (subgroupElect()) unit = atomicAdd(control.cursor, 1u);
-        unit = subgroupBroadcastFirst(unit);
+        if (firstLane()) unit = atomicAdd(control.cursor, 1u);
+        unit = fromFirstLane(unit);
         if (unit >= control.units) break;
         uint lane = gl_SubgroupInvocationID;
         uint trips = subgroupCheckTrips(unit, lane);
@@ -50,7 +50,7 @@ void main() {
         uint rounds = 0u;
         uint received = 0u;
         bool busy = trips > 0u && !lost;
-        if (groupMax(busy ? 1u : 0u) != 0u) do {
+        if (groupAny(busy)) do {
             rounds += 1u;
             if (busy) mine += 1u;
             // The lane with the most trips left (the lowest among equals) gives this round's value.
@@ -61,8 +61,9 @@ void main() {
             if (kSubgroupBarrier) subgroupBarrier();
             received += given;
             busy = busy && mine < trips;
-        } while (groupMax(busy ? 1u : 0u) != 0u);
+        } while (groupAny(busy));
         uint sum = groupSum(mine);
-        if (!lost) results[unit * gl_SubgroupSize + lane] = SubgroupCheckResult((rounds << 24u) | (mine << 16u) | (sum + 1u), received);
+        const uint counts = (rounds << 24u) | (mine << 16u) | (sum + 1u);
+        if (!lost) results[unit * gl_SubgroupSize + lane] = SubgroupCheckResult(counts, received);
     }
 }
