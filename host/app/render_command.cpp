@@ -197,9 +197,8 @@ void applyOverrides(const RenderCommand& c, Scene& scene) {
     const Camera& cam = scene.camera;
     if (const std::string problem = cameraProblem(cam); !problem.empty())
         throw InputError("the camera (--camera-from, --camera-at, --camera-up or the scene's): " + problem);
-    for (std::size_t i = 0; i < scene.lights.size(); ++i)
-        if (const std::string problem = lightProblem(scene, i); !problem.empty())
-            throw InputError("light " + std::to_string(i + 1) + " (--light or the scene's): " + problem);
+    if (const auto problem = lightProblem(scene))
+        throw InputError("light " + std::to_string(problem->light + 1) + " (--light or the scene's): " + problem->message);
     if (std::uint64_t(cam.width) * cam.height > (1ull << 28))
         throw InputError("the image is too large: " + std::to_string(cam.width) + "x" + std::to_string(cam.height));
 }

@@ -39,20 +39,23 @@ std::string cameraProblem(const Camera& camera) {
     return "";
 }
 
-std::string lightProblem(const Scene& scene, std::size_t index) {
+std::optional<LightProblem> lightProblem(const Scene& scene) {
+    if (scene.lights.empty()) return std::nullopt;
     glm::dvec3 low(std::numeric_limits<double>::max()), high(std::numeric_limits<double>::lowest());
     for (const Triangle& t : scene.triangles)
         for (const glm::vec3& p : t.position) {
             low = glm::min(low, glm::dvec3(p));
             high = glm::max(high, glm::dvec3(p));
         }
-    const glm::dvec3 light(scene.lights[index].position);
-    if (scene.triangles.empty()) low = high = light;
-    // The farthest corner of the box from the light: along each axis, the farther of the two ends.
-    const glm::dvec3 far = glm::max(glm::abs(light - low), glm::abs(light - high));
-    const double distance = glm::length(far);
-    if (distance >= kLargestLength) return "the light is as far from the scene's triangles as " + beyondFloat(distance);
-    return "";
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        const glm::dvec3 light(scene.lights[i].position);
+        const glm::dvec3 near = scene.triangles.empty() ? light : low, far = scene.triangles.empty() ? light : high;
+        // The farthest corner of the box from the light: along each axis, the farther of the two ends.
+        const double distance = glm::length(glm::max(glm::abs(light - near), glm::abs(light - far)));
+        if (distance >= kLargestLength)
+            return LightProblem{i, "the light is as far from the scene's triangles as " + beyondFloat(distance)};
+    }
+    return std::nullopt;
 }
 
 }  // namespace vitrum

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 
 #include "scene/scene.h"
@@ -17,8 +18,13 @@ namespace vitrum {
 // from and at apart, up neither zero nor along the view, and both within float range.
 std::string cameraProblem(const Camera& camera);
 
-// "" when light `index` is within float range of every triangle of the scene (of its bounding
-// box), else how far it is.
-std::string lightProblem(const Scene& scene, std::size_t index);
+struct LightProblem {
+    std::size_t light = 0;  // index into Scene::lights
+    std::string message;    // how far it is
+};
+
+// The first light that is not within float range of every triangle of the scene (of their
+// bounding box, found once), if any.
+std::optional<LightProblem> lightProblem(const Scene& scene);
 
 }  // namespace vitrum

@@ -79,9 +79,8 @@ public:
 
         ObjLoader loader(scene);
         for (const ObjectSpec& spec : specs) loader.load(spec.obj, spec.options);
-        for (std::size_t i = 0; i < scene.lights.size(); ++i)
-            if (const std::string problem = lightProblem(scene, i); !problem.empty())
-                fail("/lights/" + std::to_string(i) + "/position", problem);
+        if (const auto problem = lightProblem(scene))
+            fail("/lights/" + std::to_string(problem->light) + "/position", problem->message);
         if (!cameraValue) {
             // The automatic camera comes with its own light unless the file lists lights.
             std::vector<PointLight> listed = scene.lights;
