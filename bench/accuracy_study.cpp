@@ -315,10 +315,10 @@ std::string limitsHit(const RenderStats& s) {
     auto add = [&](const char* name, std::uint64_t n) {
         if (n) hit += (hit.empty() ? "" : ", ") + std::string(name) + " " + std::to_string(n);
     };
-    add("ray stack", s.limits.rayStackOverflow);
-    add("medium stack", s.limits.mediumStackOverflow);
-    add("traversal stack", s.limits.traversalStackOverflow);
-    add("loop limit", s.limits.loopLimitSuspected);
+    add("ray stack", s.rayStackOverflows);
+    add("medium stack", s.mediumStackOverflows);
+    add("traversal stack", s.traversalStackOverflows);
+    add("loop limit", s.loopLimitSuspected);
     return hit;
 }
 
@@ -333,7 +333,7 @@ std::string sceneTable(const SceneStudy& s) {
     for (std::size_t i = 0; i < s.rows.size(); ++i) {
         const Row& r = s.rows[i];
         const bool onFront = std::find(s.front.begin(), s.front.end(), i) != s.front.end();
-        const std::uint64_t rays = r.measured.stats.rays.total();
+        const std::uint64_t rays = r.measured.stats.totalRays();
         t << "| " << (r.setting->isDefault ? "**" + r.setting->label + " (default)**" : r.setting->label)
           << (onFront ? " [front]" : "") << " | " << backendName(r.setting->backend) << " | " << bench::fixed(r.measured.seconds, 3)
           << " (" << r.measured.runs << (r.measured.runs == 1 ? " run" : " runs") << ")" << " | " << bench::fixed(vsDefault(r, base).ratio, 2) << "x | "

@@ -175,7 +175,7 @@ int run(int argc, char** argv) {
             continue;
         }
         vitrumTimes.push_back(stats.seconds("render"));
-        rays = stats.rays.total();
+        rays = stats.totalRays();
         baselineTimes.push_back(storage.dispatch(device));
         texelTimes.push_back(texel.dispatch(device));
     }

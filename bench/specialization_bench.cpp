@@ -137,7 +137,7 @@ int run(int argc, char** argv) {
              << bench::fixed(bench::median(general.warmCompiles), 3) << " | "
              << bench::fixed(bench::median(special.warmCompiles), 3) << " | " << (identical ? "yes" : "**no**") << " |\n";
         const double tilePixels = double(std::min(tileSize, width)) * std::min(tileSize, height);
-        work << "| " << name << " | " << special.stats.rays.total() << " | " << k.mediumStackDepth << " | "
+        work << "| " << name << " | " << special.stats.totalRays() << " | " << k.mediumStackDepth << " | "
              << k.pendingRayCapacity << " | " << general.stats.stateBytesPerPixel << " -> "
              << special.stats.stateBytesPerPixel << " | "
              << bench::fixed(double(general.stats.stateBytesPerPixel - special.stats.stateBytesPerPixel) * tilePixels /

@@ -303,7 +303,7 @@ int run(int argc, char** argv) {
             wideTimes.push_back(wideTime);
             gpuTimes.push_back(stats.seconds("render"));
             embreeTimes.push_back(embreeTime);
-            gpuRays = stats.rays.total();
+            gpuRays = stats.totalRays();
             touchingProbes = stats.touchingProbes;
             gpuStats = stats;
         }

@@ -4,6 +4,10 @@
 #ifndef VITRUM_BACKGROUND_GLSL
 #define VITRUM_BACKGROUND_GLSL
 
+#include "bindings.glsl"
+#include "specialization.glsl"
+#include "texture.glsl"
+
 const float kPi = 3.14159265358979;
 
 // theta = acos(z), phi = atan2(y, x) + pi, u = 1 - phi / (2 pi), v = theta / pi.

@@ -1,9 +1,13 @@
-// The buffers of trace.comp; layouts from shared/gpu_types.h. Binding numbers match
-// host/gpu/trace_pipeline.cpp (kBinding*).
+// The buffers of trace.comp; layouts from shared/gpu_types.h, binding numbers from
+// shared/trace_bindings.h.
 #ifndef VITRUM_BINDINGS_GLSL
 #define VITRUM_BINDINGS_GLSL
 
-layout(set = 0, binding = 0, rgba32ui) uniform readonly uimageBuffer paramTexels;  // one RenderParams
+#include "shared/gpu_types.h"
+
+#include "shared/trace_bindings.h"
+
+layout(set = 0, binding = kBindingParams, rgba32ui) uniform readonly uimageBuffer paramTexels;  // one RenderParams
 // The parameters and the scene's geometry, materials, lights and object media are storage texel
 // buffers of uvec4 texels (gpu_types.h: kTraversalNodeTexels and the others), read with imageLoad.
 // On lavapipe every storage-buffer access is a loop over the 8 lanes, with a branch a lane, while
@@ -11,20 +15,20 @@ layout(set = 0, binding = 0, rgba32ui) uniform readonly uimageBuffer paramTexels
 // (docs/performance.md). And an imageLoad is compiled into the kernel, while a uniform texel
 // buffer's texelFetch is a call to a function of its own, around which every live vector register
 // is saved and restored: imageLoad made the kernel 3-12% faster (docs/gpu-design.md).
-layout(set = 0, binding = 1, rgba32ui) uniform readonly uimageBuffer nodeTexels;
-layout(set = 0, binding = 2, rgba32ui) uniform readonly uimageBuffer vertexTexels;
-layout(set = 0, binding = 3, rgba32ui) uniform readonly uimageBuffer shadingTexels;
-layout(set = 0, binding = 4, rgba32ui) uniform readonly uimageBuffer materialTexels;
-layout(set = 0, binding = 5, rgba32ui) uniform readonly uimageBuffer lightTexels;
-layout(std430, set = 0, binding = 6) readonly buffer Textures { TextureInfo textures[]; };
-layout(std430, set = 0, binding = 7) readonly buffer Texels { float texels[]; };  // RGB, packed
-layout(set = 0, binding = 8, rgba32ui) uniform readonly uimageBuffer objectMediumTexels;
+layout(set = 0, binding = kBindingNodes, rgba32ui) uniform readonly uimageBuffer nodeTexels;
+layout(set = 0, binding = kBindingVertices, rgba32ui) uniform readonly uimageBuffer vertexTexels;
+layout(set = 0, binding = kBindingShading, rgba32ui) uniform readonly uimageBuffer shadingTexels;
+layout(set = 0, binding = kBindingMaterials, rgba32ui) uniform readonly uimageBuffer materialTexels;
+layout(set = 0, binding = kBindingLights, rgba32ui) uniform readonly uimageBuffer lightTexels;
+layout(std430, set = 0, binding = kBindingTextures) readonly buffer Textures { TextureInfo textures[]; };
+layout(std430, set = 0, binding = kBindingTexels) readonly buffer Texels { float texels[]; };  // RGB, packed
+layout(set = 0, binding = kBindingObjectMedia, rgba32ui) uniform readonly uimageBuffer objectMediumTexels;
 // One tile's pixels, by slot; .w is the slot's status (suspend.glsl), which the resumable kernel reads.
-layout(std430, set = 0, binding = 9) buffer Pixels { vec4 pixels[]; };
-layout(std430, set = 0, binding = 10) buffer States { uvec4 stateTexels[]; };  // TraceStates, see suspend.glsl
-layout(std430, set = 0, binding = 11) buffer Stats { uint stats[]; };
-layout(std430, set = 0, binding = 12) buffer PendingRays { PendingRay pendingRays[]; };  // trace.comp's pendingRayIndex
-layout(std430, set = 0, binding = 13) buffer TraversalStacks { uint traversalStacks[]; };  // kTraversalStackSize a pixel
+layout(std430, set = 0, binding = kBindingPixels) buffer Pixels { vec4 pixels[]; };
+layout(std430, set = 0, binding = kBindingStates) buffer States { uvec4 stateTexels[]; };  // TraceStates, see suspend.glsl
+layout(std430, set = 0, binding = kBindingStats) buffer Stats { uint stats[]; };
+layout(std430, set = 0, binding = kBindingPendingRays) buffer PendingRays { PendingRay pendingRays[]; };  // trace.comp's pendingRayIndex
+layout(std430, set = 0, binding = kBindingTraversalStacks) buffer TraversalStacks { uint traversalStacks[]; };  // kTraversalStackSize a pixel
 
 #include "geometry_texels.glsl"  // fetchVec4, loadTraversalNode, loadTriangle
 

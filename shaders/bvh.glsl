@@ -1,11 +1,17 @@
 // A resumable BVH traversal over the flattened nodes of shared/gpu_types.h.
-// The traversal's state is kept in the global `st` and its stack in gStack (see trace.comp), so
-// that a dispatch can stop after any step and the next one resume it.
+// The traversal's state is kept in the pixel's state `st` (trace_state.glsl) and its stack in
+// gStack, so that a dispatch can stop after any step and the next one resume it (suspend.glsl).
+// Its includer provides the scene's geometry (geometry_texels.glsl's nodeTexels and
+// vertexTexels), `params` (bvh.x, tuning, pass.w) and the constants kShadowRays, kTouchingProbe,
+// kOpaqueContact, kCoincidentOpaque, kResumable and kFullSubgroups: trace.comp's
+// (bindings.glsl, specialization.glsl), or a benchmark's own (bench/trace_only).
 #ifndef VITRUM_BVH_GLSL
 #define VITRUM_BVH_GLSL
 
 const uint kNoTriangle = 0xFFFFFFFFu;
 
+#include "trace_state.glsl"
+#include "counters.glsl"
 #include "lanes.glsl"
 #include "ieee_vector_math.glsl"
 #include "ray_box.glsl"
@@ -14,6 +20,10 @@ const uint kNoTriangle = 0xFFFFFFFFu;
 
 const uint kTraverseClosest = 0u;  // the closest hit (and touching.glsl's candidates, when collected)
 const uint kTraverseAny = 1u;      // any hit (shadow rays)
+
+// This pixel's BVH traversal stack, in private memory while the kernel runs: on lavapipe that is
+// cheaper than a storage buffer, whose every access loops over the lanes.
+uint gStack[kTraversalStackSize];
 
 // A traversal stack entry is a node whose box the ray entered, as gpu_types.h's TraversalNode
 // writes its children: an interior node's index, or a leaf's triangle range (kLeafEntryFlag), so
@@ -32,6 +42,22 @@ void beginTraversal(vec3 origin, vec3 direction, float tMin, float tMax) {
     st.traversal.xyz = uvec3(0u, 0u, kNoTriangle);
 }
 
+// A closest-hit traversal of st.ray, with no touching candidates yet (touching.glsl), no
+// opaque surface under glass and none the ray leaves through (bvh.glsl's traverse).
+void beginClosestTraversal() {
+    if (kTouchingProbe) {
+        st.touching = uvec4(0u);
+        st.probe = vec4(kNoCandidate);
+    }
+    if (kOpaqueContact) {
+        st.hitPosition = vec4(kNoCandidate, uintBitsToFloat(kNoTriangle), 0.0, 0.0);
+        st.hitNormal.x = 0.0;
+    }
+    if (kCoincidentOpaque) st.hitGeometricNormal = vec4(kNoCandidate, uintBitsToFloat(kNoTriangle), 0.0, 0.0);
+    beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 0.0, 3.0e38);
+    st.control.x = kPhaseTrace;
+}
+
 // One interior node of a traversal: tests both children's boxes, keeps the nearer hit child in
 // `current` and pushes the farther one when both are. When neither is hit, the next entry comes
 // off the stack at once; `over` when the stack is empty. The stack's top is read before the node,
@@ -44,7 +70,7 @@ void visitInteriorNode(inout uint current, inout uint top, inout bool over, out 
                        BoxRay ray, float tMin, float tMax) {
     uint below = gStack[top == 0u ? 0u : top - 1u];
     TraversalNode node = loadTraversalNode(current);
-    gNodeVisits += 2u;
+    counters.nodeVisits += 2u;
     bool hit0 = hitsBox(node.min0.xyz, node.max0.xyz, ray, tMin, tMax);
     bool hit1 = hitsBox(node.min1.xyz, node.max1.xyz, ray, tMin, tMax);
     // Near child (on the ray's side of the split) and far child.
@@ -63,7 +89,7 @@ void visitInteriorNode(inout uint current, inout uint top, inout bool over, out 
     if (!hitNear) {
         current = farEntry;
     } else if (top + 2u > kTraversalStackSize) {
-        gTraversalOverflows += 1u;  // the far child is dropped, never silently
+        counters.traversalStackOverflows += 1u;  // the far child is dropped, never silently
     } else {
         top += 1u;
     }
@@ -133,11 +159,11 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     // lavapipe counts the group's iterations against its limit, not a lane's: lanes that finish
     // a loop early wait for the others. So each inner loop adds the most iterations any lane ran
     // in it, or one for a loop no lane enters, to `steps`, which stays the same in all lanes: the
-    // iterations the group ran. gPixelSteps counts those this lane ran. The outer loop runs while
+    // iterations the group ran. counters.loopSteps counts those this lane ran. The outer loop runs while
     // some lane's traversal is not over, and a lane whose traversal is over waits in it.
     if (groupAny(!over) && steps < budget) do {
         steps += 1u;
-        if (!over) gPixelSteps += 1u;
+        if (!over) counters.loopSteps += 1u;
         // After a leaf (or on resuming between nodes), the next entry comes off the stack.
         if (!over && current == kNoEntry && cursor >= leafEnd) {
             if (top == 0u) over = true;
@@ -161,7 +187,7 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
             uint slot = min(top, kTraversalStackSize - 1u);  // the top before a push: a free slot
             uint farEntry = 0u;
             if (inNodes) {
-                gPixelSteps += 1u;
+                counters.loopSteps += 1u;
                 if ((current & kLeafEntryFlag) == 0u)
                     visitInteriorNode(current, top, over, farEntry, direction, boxRay, tMin, tMax + reach);
                 // A leaf, taken off the stack or just entered, is taken in the same iteration.
@@ -188,7 +214,7 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
                 if (collectTouching && glass) {
                     bool entering = ieeeDot(direction, windingNormal(tri)) < 0.0;
                     addTouchingCandidate(touchingObjects, touchingT, floatBitsToUint(tri.v1.w), entering, hit.x,
-                                         tMax + reach);
+                                         tMax + reach, counters.mediumStackOverflows);
                 }
                 if (collectContact && !glass &&
                     (hit.x < contact.x || (hit.x == contact.x && triangle < floatBitsToUint(contact.y))))
@@ -209,7 +235,7 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
                 }
             }
         } while (cursor < leafEnd && steps + triangleSteps < budget);
-        gPixelSteps += triangleSteps;
+        counters.loopSteps += triangleSteps;
         steps += max(groupMax(triangleSteps), 1u);
     } while (groupAny(!over) && steps < budget);
     // Suspended: the entry in hand goes back on the stack (pushes leave it a free slot). Stored

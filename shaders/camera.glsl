@@ -3,6 +3,8 @@
 #ifndef VITRUM_CAMERA_GLSL
 #define VITRUM_CAMERA_GLSL
 
+#include "bindings.glsl"
+
 #include "ieee_vector_math.glsl"
 
 // Position of sample k of n inside its pixel, in [0, 1)^2: the pixel centre for one sample,

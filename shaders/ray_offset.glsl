@@ -7,6 +7,8 @@
 #ifndef VITRUM_RAY_OFFSET_GLSL
 #define VITRUM_RAY_OFFSET_GLSL
 
+#include "bindings.glsl"
+
 float offsetComponent(float p, float n) {
     float originRegion = params.offsets.x;
     float absoluteOffset = params.offsets.y;

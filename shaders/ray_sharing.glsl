@@ -27,6 +27,13 @@
 #ifndef VITRUM_RAY_SHARING_GLSL
 #define VITRUM_RAY_SHARING_GLSL
 
+#include "trace_state.glsl"
+#include "counters.glsl"
+#include "pending_rays.glsl"
+#include "colour_sum.glsl"
+#include "specialization.glsl"
+#include "lanes.glsl"
+
 #ifdef VITRUM_NO_SUBGROUP_OPERATIONS
 const bool kRaySharing = false;
 #else
@@ -47,6 +54,19 @@ bool gGroupTook = false;  // some lane of the group took a ray: the same in ever
 uint gGiver = 0u;
 bool gGives = false;     // this lane gives the ray it reads this round
 bool gReceives = false;  // this lane takes the ray given this round
+
+// A unit's lanes start with nothing taken or given.
+void resetRaySharing() {
+    gTaken = false;
+    gOwner = 0u;
+    gOwnLow = uvec4(0u);
+    gOwnHigh = uvec4(0u);
+    gOwnSteps = 0u;
+    gGroupTook = false;
+    gGiver = 0u;
+    gGives = false;
+    gReceives = false;
+}
 
 #ifndef VITRUM_NO_SUBGROUP_OPERATIONS
 // Serves one idle lane: called once a round by every lane of the subgroup, after shading.
@@ -71,7 +91,7 @@ void shareRays(bool canTake) {
         // Hand the taken tree's colour and steps back to its owner.
         uvec3 low = subgroupShuffle(st.colourLow.xyz, taker);
         uvec3 high = subgroupShuffle(st.colourHigh.xyz, taker);
-        uint steps = subgroupShuffle(gPixelSteps, taker);
+        uint steps = subgroupShuffle(counters.loopSteps, taker);
         uint owner = subgroupShuffle(gOwner, taker);
         if (self == owner) {
             if (gTaken) {  // the owner is tracing a taken tree itself (maybe this one's)
@@ -79,13 +99,13 @@ void shareRays(bool canTake) {
                 gOwnSteps += steps;
             } else {
                 addColourSums(st.colourLow, st.colourHigh, low, high);
-                gPixelSteps += steps;
+                counters.loopSteps += steps;
             }
         }
         if (self == taker) {
             st.colourLow.xyz = gOwnLow.xyz;
             st.colourHigh.xyz = gOwnHigh.xyz;
-            gPixelSteps = gOwnSteps;
+            counters.loopSteps = gOwnSteps;
             gTaken = false;
         }
     }
@@ -104,10 +124,10 @@ void shareRays(bool canTake) {
     if (self == taker) {
         gOwnLow.xyz = st.colourLow.xyz;
         gOwnHigh.xyz = st.colourHigh.xyz;
-        gOwnSteps = gPixelSteps;
+        gOwnSteps = counters.loopSteps;
         st.colourLow.xyz = uvec3(0u);
         st.colourHigh.xyz = uvec3(0u);
-        gPixelSteps = 0u;
+        counters.loopSteps = 0u;
         gTaken = true;
         gOwner = owner;
         // Its tree's pending rays go where its owner's would have: the same capacity is left.

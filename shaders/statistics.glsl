@@ -1,6 +1,5 @@
-// Adds one invocation's counters to stats[] (gpu_types.h's kStat* indices). `sums` holds the
-// counters 0 .. kStatFirstMax - 1 in index order;
-// `maxima` the counters from kStatFirstMax on.
+// Adds invocations' counters to stats[] (indices of shared/trace_statistics.h): `sums` holds the
+// counters 0 .. kStatFirstMax - 1 in index order (sumsOf), `maxima` the ones from kStatFirstMax on.
 //
 // On lavapipe every atomic is a loop over the 8 lanes of a SIMD group, run in full even when no
 // lane is active, and adding 22 counters so took about 10% of a primary-ray render. So the
@@ -21,12 +20,9 @@
 #extension GL_KHR_shader_subgroup_shuffle : require
 #endif
 
-// The sums, kStatFirstMax of them, four a vector.
-struct StatisticSums {
-    uvec4 v0, v1, v2, v3, v4;
-};
-
-const StatisticSums kNoStatistics = StatisticSums(uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u));
+#include "counters.glsl"
+#include "bindings.glsl"
+#include "specialization.glsl"
 
 void addSums(inout StatisticSums total, StatisticSums sums) {
     total.v0 += sums.v0;

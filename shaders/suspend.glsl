@@ -16,6 +16,11 @@
 #ifndef VITRUM_SUSPEND_GLSL
 #define VITRUM_SUSPEND_GLSL
 
+#include "trace_state.glsl"
+#include "bvh.glsl"
+#include "bindings.glsl"
+#include "specialization.glsl"
+
 uvec4 gStateTexels[kTraceStateTexels];
 
 // A slot's status is its pixel's alpha (pixels[slot].w), written with the pixel by every
@@ -83,7 +88,7 @@ bool resumeState(uint slot) {
     if (suspended) unpackState();
     else startPixel();
     uint entries = suspended && inTraversal() ? st.control.w : 0u;
-    for (uint i = 0u; i < entries; ++i) gStack[i] = traversalStacks[stackBase + i];
+    for (uint i = 0u; i < entries; ++i) gStack[i] = traversalStacks[slot * kTraversalStackSize + i];
     return true;
 }
 
@@ -95,7 +100,7 @@ void suspendState(uint slot, bool suspended) {
     uint texels = suspended ? kTraceStateTexels : 0u;
     for (uint i = 0u; i < texels; ++i) stateTexels[first + i] = gStateTexels[i];
     uint entries = suspended && inTraversal() ? st.control.w : 0u;
-    for (uint i = 0u; i < entries; ++i) traversalStacks[stackBase + i] = gStack[i];
+    for (uint i = 0u; i < entries; ++i) traversalStacks[slot * kTraversalStackSize + i] = gStack[i];
 }
 
 // What a dispatch writes to the pixel of its slot: the colour of a finished pixel, or the status

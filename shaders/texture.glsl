@@ -4,6 +4,9 @@
 #ifndef VITRUM_TEXTURE_GLSL
 #define VITRUM_TEXTURE_GLSL
 
+#include "bindings.glsl"
+#include "specialization.glsl"
+
 #include "ieee_vector_math.glsl"
 
 // GLSL leaves % undefined for a negative operand (C++ truncates; NVIDIA's driver gave other rows

@@ -17,8 +17,10 @@ const float kNoCandidate = 3.4028235e38;  // the largest float: above every limi
 
 // Records that the ray crosses a glass triangle of `object` at t, below `limit` (the nearest hit
 // so far plus e). An object keeps its nearest crossing. With four objects in the slots already
-// (the nearest hit's and three others), the farthest of the five is dropped and counted.
-void addTouchingCandidate(inout uvec4 objects, inout vec4 ts, uint object, bool entering, float t, float limit) {
+// (the nearest hit's and three others), the farthest of the five is dropped and counted in
+// `dropped`.
+void addTouchingCandidate(inout uvec4 objects, inout vec4 ts, uint object, bool entering, float t, float limit,
+                          inout uint dropped) {
     uint tagged = object | (entering ? 0x80000000u : 0u);
     bvec4 valid = lessThan(ts, vec4(limit));
     bvec4 same = bvec4(uvec4(equal(objects & 0x7FFFFFFFu, uvec4(object))) & uvec4(valid));
@@ -30,7 +32,7 @@ void addTouchingCandidate(inout uvec4 objects, inout vec4 ts, uint object, bool 
     }
     uint slot = !valid.x ? 0u : (!valid.y ? 1u : (!valid.z ? 2u : (!valid.w ? 3u : 4u)));
     if (slot == 4u) {
-        gMediumStackOverflows += 1u;  // a fourth object touching the nearest hit's: never silently
+        dropped += 1u;  // a fourth object touching the nearest hit's: never silently
         float farthest = max(max(ts.x, ts.y), max(ts.z, ts.w));
         if (t >= farthest) return;
         slot = ts.x == farthest ? 0u : (ts.y == farthest ? 1u : (ts.z == farthest ? 2u : 3u));

@@ -7,7 +7,6 @@
 #include "shared/gpu_types.h"
 #include "shared/touching_test_types.h"
 
-uint gMediumStackOverflows = 0u;  // trace.comp's counter, which touching.glsl adds to
 #include "touching.glsl"
 
 layout(local_size_x = kTouchingTestGroupSize) in;
@@ -23,16 +22,17 @@ void main() {
     TouchingCase c = cases[i];
     uvec4 objects = uvec4(0u);
     vec4 ts = vec4(kNoCandidate);
+    uint dropped = 0u;
     for (uint k = 0u; k < min(c.control.x, kTouchingTestCrossings); ++k) {
         uint tagged = k < 4u ? c.objects0[k] : c.objects1[k - 4u];
         float t = k < 4u ? c.t0[k] : c.t1[k - 4u];
         float limit = k < 4u ? c.limit0[k] : c.limit1[k - 4u];
-        addTouchingCandidate(objects, ts, tagged & 0x7FFFFFFFu, (tagged & 0x80000000u) != 0u, t, limit);
+        addTouchingCandidate(objects, ts, tagged & 0x7FFFFFFFu, (tagged & 0x80000000u) != 0u, t, limit, dropped);
     }
     float farthest = c.hit.y;
     TouchingResult r;
     r.touching = selectTouching(objects, ts, c.hit.x, c.control.y, farthest);
     r.farthest = vec4(farthest, 0.0, 0.0, 0.0);
-    r.counts = uvec4(gMediumStackOverflows, 0u, 0u, 0u);
+    r.counts = uvec4(dropped, 0u, 0u, 0u);
     results[i] = r;
 }

@@ -26,7 +26,7 @@ layout(std430, set = 0, binding = 4) writeonly buffer Hits { vec4 hits[]; };
 // What bvh.glsl reads of trace.comp: the features (a shadow ray ends at its first hit; no
 // touching probe, no glass on opaque surfaces and no coincident opaque ones; full subgroups,
 // which the bench asks for when it creates the pipeline; a traversal that is never resumed), the
-// parameters, the state and the counters.
+// parameters. The traversal's state and counters are bvh.glsl's own (trace_state.glsl, counters.glsl).
 const bool kShadowRays = true;
 const bool kTouchingProbe = false;
 const bool kOpaqueContact = false;
@@ -34,12 +34,6 @@ const bool kCoincidentOpaque = false;
 const bool kResumable = false;
 const bool kFullSubgroups = true;
 RenderParams params;
-TraceState st;
-uint gStack[kTraversalStackSize];
-uint gPixelSteps = 0u;
-uint gNodeVisits = 0u;
-uint gTraversalOverflows = 0u;
-uint gMediumStackOverflows = 0u;
 
 #include "bvh.glsl"
 

@@ -365,18 +365,18 @@ int renderCommand(int argc, char** argv, int first) {
                     (unsigned long long)stats.restartedPixels, stats.seconds("resumable kernel"));
     std::printf("time: %.3f s rendering, %.3f s in all\n", renderSeconds, totalSeconds);
     std::printf("rays: %llu (%.2f Mrays/s): %llu primary, %llu shadow, %llu reflection, %llu refraction\n",
-                (unsigned long long)stats.rays.total(),
-                renderSeconds > 0 ? double(stats.rays.total()) / renderSeconds * 1e-6 : 0.0,
-                (unsigned long long)stats.rays.primary, (unsigned long long)stats.rays.shadow,
-                (unsigned long long)stats.rays.reflection, (unsigned long long)stats.rays.refraction);
-    if (stats.limits.loopLimitSuspected || stats.limits.traversalStackOverflow || stats.limits.rayStackOverflow ||
-        stats.limits.mediumStackOverflow)
+                (unsigned long long)stats.totalRays(),
+                renderSeconds > 0 ? double(stats.totalRays()) / renderSeconds * 1e-6 : 0.0,
+                (unsigned long long)stats.primaryRays, (unsigned long long)stats.shadowRays,
+                (unsigned long long)stats.reflectionRays, (unsigned long long)stats.refractionRays);
+    if (stats.loopLimitSuspected || stats.traversalStackOverflows || stats.rayStackOverflows ||
+        stats.mediumStackOverflows)
         std::fprintf(stderr, "vitrum: warning: limits hit: see --stats (loop limit %llu, traversal stack %llu, "
                              "ray stack %llu, medium stack %llu)\n",
-                     (unsigned long long)stats.limits.loopLimitSuspected,
-                     (unsigned long long)stats.limits.traversalStackOverflow,
-                     (unsigned long long)stats.limits.rayStackOverflow,
-                     (unsigned long long)stats.limits.mediumStackOverflow);
+                     (unsigned long long)stats.loopLimitSuspected,
+                     (unsigned long long)stats.traversalStackOverflows,
+                     (unsigned long long)stats.rayStackOverflows,
+                     (unsigned long long)stats.mediumStackOverflows);
     if (!command.statsPath.empty()) {
         nlohmann::json json = toJson(stats);
         json["scene"] = command.scenePath;

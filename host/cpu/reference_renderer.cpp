@@ -31,15 +31,9 @@
 namespace vitrum {
 namespace {
 
-// Counters of one worker thread, summed at the end.
-struct TraceCounters {
-    RayCounts rays;
-    std::uint64_t depthLimit = 0;
-    std::uint64_t weightCuts = 0;
-    std::uint64_t totalInternalReflections = 0;
-    std::uint64_t absorbedEscapes = 0;
-    std::uint64_t inconsistentMedia = 0;
-    std::uint64_t touchingProbes = 0;
+// Counters of one worker thread, summed at the end: those of trace_statistics.h that the CPU
+// measures (the GPU-only ones stay 0 and are not reported), and the traversal's.
+struct TraceCounters : TraceCounts {
     TraversalCounters traversal;
     std::vector<TracedRay>* tracedRays = nullptr;  // this thread's log, when one is asked for
     std::uint32_t pixel = 0;                        // the pixel being traced, for the log
@@ -53,17 +47,9 @@ struct TraceCounters {
     }
 
     void addTo(RenderStats& stats) const {
-        stats.rays.primary += rays.primary;
-        stats.rays.shadow += rays.shadow;
-        stats.rays.reflection += rays.reflection;
-        stats.rays.refraction += rays.refraction;
-        stats.limits.depthLimit += depthLimit;
-        stats.limits.weightCuts += weightCuts;
-        stats.limits.inconsistentMedia += inconsistentMedia;
-        stats.totalInternalReflections += totalInternalReflections;
-        stats.absorbedEscapes += absorbedEscapes;
-        stats.nodeVisits += traversal.nodeVisits;
-        stats.touchingProbes += touchingProbes;
+        TraceCounts counts = *this;
+        counts.nodeVisits = traversal.nodeVisits;
+        stats += counts;
     }
 };
 
@@ -126,10 +112,10 @@ public:
             const Vec3 d = glm::normalize((sx - Real(c.width) / Real(2)) * cameraX_ +
                                           (Real(c.height) / Real(2) - sy) * cameraY_ - focal_ * cameraZ_);
             if (maxDepth_ == 0) {
-                counters.depthLimit += 1;  // not even the primary ray may be traced
+                counters.depthLimitHits += 1;  // not even the primary ray may be traced
                 continue;
             }
-            counters.rays.primary += 1;
+            counters.primaryRays += 1;
             // Off the surface the camera lies on, if any, on the ray's side (render/camera_surface.h).
             const bool behind = glm::dot(d, cameraSurface_) < Real(0);
             sum += trace(primaryRayOrigin(cameraFrom_, cameraSurface_, d, offsetScale_), d, 0,
@@ -155,6 +141,7 @@ private:
                 TraceCounters& counters) const {
         Ray<Real> ray{origin, d, Real(0), std::numeric_limits<Real>::max()};
         counters.logRay(ray, false);
+        counters.maxRayDepth = std::max<std::uint64_t>(counters.maxRayDepth, depth);
         auto found = traceClosest<Real>(bvh_.nodes, vertices_, ray, &counters.traversal);
         if (found) found = hitWhereSurfacesMeet(ray, *found, counters);
         const Color mu = mediumAttenuation(media);
@@ -272,7 +259,7 @@ private:
     // V(p, l_p): no surface (glass included) strictly between the offset hit point and the light.
     bool visible(const Hit& hit, const Vec3& lightPosition, TraceCounters& counters) const {
         const Vec3 origin = offsetRayOrigin(hit.position, hit.geometricNormal, offsetScale_);
-        counters.rays.shadow += 1;
+        counters.shadowRays += 1;
         // t in units of the whole segment: 0 < t < 1 excludes the light's own position.
         const Ray<Real> shadow{origin, lightPosition - origin, Real(0), Real(1)};
         counters.logRay(shadow, true);
@@ -298,15 +285,15 @@ private:
     Color traceChild(const Vec3& origin, const Vec3& direction, std::uint32_t depth, const MediumStack& media,
                      const Color& weight, bool reflection, TraceCounters& counters) const {
         if (depth + 1 >= maxDepth_) {
-            counters.depthLimit += 1;
+            counters.depthLimitHits += 1;
             return Color(0);
         }
         if (glm::all(glm::lessThan(weight, Color(minWeight_)))) {
             counters.weightCuts += 1;
             return Color(0);
         }
-        if (reflection) counters.rays.reflection += 1;
-        else counters.rays.refraction += 1;
+        if (reflection) counters.reflectionRays += 1;
+        else counters.refractionRays += 1;
         return trace(origin, direction, depth + 1, media, weight, counters);
     }
 
@@ -322,6 +309,7 @@ private:
         std::vector<Crossing> crossings{{hit.object, entering, hit.t}};
         Real farT = hit.t;
         if (touchingPossible_) findTouchingCrossings(hit, rayOrigin, d, crossings, farT, counters);
+        if (crossings.size() > 1) counters.touchingInterfaces += 1;
 
         // The stack on the far side: leave, then enter (for touching objects the ray leaves one
         // and enters the other at the same point, whatever order the hits came in).
@@ -342,6 +330,7 @@ private:
             if (std::find(inside.begin(), inside.end(), c.object) == inside.end()) inside.push_back(c.object);
             else counters.inconsistentMedia += 1;
         }
+        counters.maxMediumDepth = std::max<std::uint64_t>(counters.maxMediumDepth, inside.size());
         const Real n1 = entering ? mediumIor(media) : Real(hit.material->ior);
         const Real n2 = entering && crossings.size() == 1 ? Real(hit.material->ior) : mediumIor(inside);
 

@@ -39,22 +39,19 @@ TraceKernelConstants traceKernelConstants(const TraceSpecialization& specializat
     const bool fullSubgroups = sums == StatisticsSums::shuffles;
     if (persistent && (resumable || !fullSubgroups))
         throw std::logic_error("only the first dispatch's kernel in full subgroups can be persistent");
-    const auto sceneConstants = specialization.constants();
-    // Then kResumable (constant_id 13), kFullSubgroups (14) and kPersistentSubgroups (15).
-    TraceKernelConstants constants;
-    std::copy(sceneConstants.begin(), sceneConstants.end(), constants.begin());
-    constants[sceneConstants.size()] = resumable ? 1u : 0u;
-    constants[sceneConstants.size() + 1] = fullSubgroups ? 1u : 0u;
-    constants[sceneConstants.size() + 2] = persistent ? 1u : 0u;
+    TraceKernelConstants constants = specialization.constants();
+    constants[gpu::kConstantResumable] = resumable ? 1u : 0u;
+    constants[gpu::kConstantFullSubgroups] = fullSubgroups ? 1u : 0u;
+    constants[gpu::kConstantPersistentSubgroups] = persistent ? 1u : 0u;
     return constants;
 }
 
 ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecialization& specialization,
                                   bool resumable, StatisticsSums sums, bool persistent) {
-    std::array<VkDescriptorType, kTraceBindingCount> bindings;
+    std::array<VkDescriptorType, gpu::kTraceBindingCount> bindings;
     bindings.fill(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-    for (TraceBinding texels : {kBindingParams, kBindingNodes, kBindingVertices, kBindingShading, kBindingMaterials, kBindingLights,
-                                kBindingObjectMedia})
+    for (std::uint32_t texels : {gpu::kBindingParams, gpu::kBindingNodes, gpu::kBindingVertices, gpu::kBindingShading,
+                                 gpu::kBindingMaterials, gpu::kBindingLights, gpu::kBindingObjectMedia})
         bindings[texels] = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
     const TraceKernelConstants constants = traceKernelConstants(specialization, resumable, sums, persistent);
     std::array<VkSpecializationMapEntry, constants.size()> entries;
@@ -67,7 +64,7 @@ ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecial
         .pData = constants.data(),
     };
     // Full subgroups are asked for exactly when the kernel is told it has them (kFullSubgroups).
-    const bool fullSubgroups = constants[TraceSpecialization::kConstantCount + 1] != 0u;
+    const bool fullSubgroups = constants[gpu::kConstantFullSubgroups] != 0u;
     return ComputePipeline(device, traceKernelCode(sums), bindings, &info,
                            fullSubgroups ? VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT_EXT : 0);
 }

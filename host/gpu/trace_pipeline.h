@@ -1,4 +1,5 @@
-// The compute pipeline of shaders/trace.comp; binding numbers as in shaders/bindings.glsl.
+// The compute pipeline of shaders/trace.comp; its bindings and specialization constants are
+// shaders/shared/trace_bindings.h and trace_constants.h.
 #pragma once
 
 #include <array>
@@ -7,26 +8,10 @@
 
 #include "gpu/compute_pipeline.h"
 #include "render/trace_specialization.h"
+#include "shared/trace_bindings.h"
+#include "shared/trace_constants.h"
 
 namespace vitrum {
-
-enum TraceBinding : std::uint32_t {
-    kBindingParams = 0,
-    kBindingNodes,
-    kBindingVertices,
-    kBindingShading,
-    kBindingMaterials,
-    kBindingLights,
-    kBindingTextures,
-    kBindingTexels,
-    kBindingObjectMedia,
-    kBindingPixels,
-    kBindingStates,
-    kBindingStats,
-    kBindingPendingRays,
-    kBindingTraversalStacks,
-    kTraceBindingCount,
-};
 
 constexpr std::uint32_t kTraceGroupSize = 8;  // local_size_x = local_size_y in trace.comp
 
@@ -49,10 +34,9 @@ const char* statisticsSumsName(StatisticsSums sums);
 // one without).
 std::span<const std::uint32_t> traceKernelCode(StatisticsSums sums);
 
-// The specialization constants of one trace kernel, in constant_id order: the scene's
-// (TraceSpecialization::constants), then kResumable, kFullSubgroups and kPersistentSubgroups.
-// Together with the code (traceKernelCode(sums)) they name the kernel.
-using TraceKernelConstants = std::array<std::uint32_t, TraceSpecialization::kConstantCount + 3>;
+// The specialization constants of one trace kernel, by id (shaders/shared/trace_constants.h): the
+// scene's (TraceSpecialization::constants) and the kernel's role and device. Together with the
+// code (traceKernelCode(sums)) they name the kernel.
 TraceKernelConstants traceKernelConstants(const TraceSpecialization& specialization, bool resumable, StatisticsSums sums,
                                           bool persistent);
 

@@ -29,31 +29,6 @@ std::span<const T> spanOf(const std::vector<T>& v) {
     return std::span<const T>(v.data(), v.size());
 }
 
-void addCounters(RenderStats& stats, const std::uint32_t* counters) {
-    stats.rays.primary += counters[gpu::kStatPrimaryRays];
-    stats.rays.shadow += counters[gpu::kStatShadowRays];
-    stats.rays.reflection += counters[gpu::kStatReflectionRays];
-    stats.rays.refraction += counters[gpu::kStatRefractionRays];
-    stats.nodeVisits += counters[gpu::kStatNodeVisits];
-    stats.limits.depthLimit += counters[gpu::kStatDepthLimitHits];
-    stats.limits.traversalStackOverflow += counters[gpu::kStatTraversalStackOverflow];
-    stats.limits.loopLimitSuspected += counters[gpu::kStatLoopLimitSuspected];
-    stats.limits.rayStackOverflow += counters[gpu::kStatRayStackOverflow];
-    stats.limits.mediumStackOverflow += counters[gpu::kStatMediumStackOverflow];
-    stats.limits.weightCuts += counters[gpu::kStatWeightCuts];
-    stats.totalInternalReflections += counters[gpu::kStatTotalInternalReflections];
-    stats.absorbedEscapes += counters[gpu::kStatAbsorbedEscapes];
-    stats.loopSteps += counters[gpu::kStatTraversalSteps];
-    stats.touchingInterfaces += counters[gpu::kStatTouchingInterfaces];
-    stats.limits.inconsistentMedia += counters[gpu::kStatInconsistentMedia];
-    stats.maxRayDepth = std::max<std::uint64_t>(stats.maxRayDepth, counters[gpu::kStatMaxRayDepth]);
-    stats.maxMediumDepth = std::max<std::uint64_t>(stats.maxMediumDepth, counters[gpu::kStatMaxMediumDepth]);
-    stats.maxPixelLoopSteps = std::max<std::uint64_t>(stats.maxPixelLoopSteps, counters[gpu::kStatMaxPixelSteps]);
-    stats.touchingProbes += counters[gpu::kStatTouchingProbes];
-    stats.restartedSteps += counters[gpu::kStatRestartedSteps];
-    stats.groupLoopSteps += counters[gpu::kStatGroupSteps];
-}
-
 // One texel an object: its medium's material's `attenuation` (Tf, Ni), which bindings.glsl's
 // objectMedium() reads.
 std::vector<glm::vec4> objectMediumTexels(const PackedScene& packed) {
@@ -127,7 +102,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     stats.addPhase("upload", secondsSince(start));
 
     start = Clock::now();
-    const std::array<const GpuBuffer*, kTraceBindingCount> bound{
+    const std::array<const GpuBuffer*, gpu::kTraceBindingCount> bound{
         &params, &nodes, &vertices, &shading, &materials, &lights, &textures,
         &texels, &objectMedia, &pixels, &states, &counters, &pendingRays, &traversalStacks};
     const StatisticsSums sums = statisticsSumsFor(device, options.statisticsSums);
@@ -197,8 +172,8 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     auto run = [&](const ComputePipeline& pipeline, glm::uvec2 groups) {
         device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, groups.x, groups.y); });
         ++stats.dispatches;
-        addCounters(stats, counterValues);
-        return counterValues[gpu::kStatUnfinishedPixels];
+        stats.addDispatch(counterValues);
+        return counterValues[TraceStatistic::unfinishedPixels];
     };
     auto dispatch = [&](const ComputePipeline& pipeline) {
         std::memcpy(params.mapped(), &p, sizeof(p));

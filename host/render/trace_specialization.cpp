@@ -37,20 +37,22 @@ TraceSpecialization TraceSpecialization::forScene(const Scene& scene, const Scen
     return s;
 }
 
-std::array<std::uint32_t, TraceSpecialization::kConstantCount> TraceSpecialization::constants() const {
-    return {materialModels,
-            shadowRays ? 1u : 0u,
-            absorption ? 1u : 0u,
-            touchingProbe ? 1u : 0u,
-            textures ? 1u : 0u,
-            backgroundKind,
-            fresnelModel,
-            textureFilter,
-            mediumStackDepth,
-            pendingRayCapacity,
-            singleSample ? 1u : 0u,
-            opaqueContact ? 1u : 0u,
-            coincidentOpaque ? 1u : 0u};
+TraceKernelConstants TraceSpecialization::constants() const {
+    TraceKernelConstants c{};
+    c[gpu::kConstantMaterialModels] = materialModels;
+    c[gpu::kConstantShadowRays] = shadowRays ? 1u : 0u;
+    c[gpu::kConstantAbsorption] = absorption ? 1u : 0u;
+    c[gpu::kConstantTouchingProbe] = touchingProbe ? 1u : 0u;
+    c[gpu::kConstantTextures] = textures ? 1u : 0u;
+    c[gpu::kConstantBackgroundKind] = backgroundKind;
+    c[gpu::kConstantFresnelModel] = fresnelModel;
+    c[gpu::kConstantTextureFilter] = textureFilter;
+    c[gpu::kConstantMediumStackDepth] = mediumStackDepth;
+    c[gpu::kConstantPendingRayCapacity] = pendingRayCapacity;
+    c[gpu::kConstantSingleSample] = singleSample ? 1u : 0u;
+    c[gpu::kConstantOpaqueContact] = opaqueContact ? 1u : 0u;
+    c[gpu::kConstantCoincidentOpaque] = coincidentOpaque ? 1u : 0u;
+    return c;
 }
 
 namespace {

@@ -15,8 +15,11 @@
 
 #include "render/scene_features.h"
 #include "scene/scene.h"
+#include "shared/trace_constants.h"
 
 namespace vitrum {
+
+using TraceKernelConstants = std::array<std::uint32_t, gpu::kTraceConstantCount>;
 
 struct TraceSpecialization {
     static constexpr std::uint32_t kAnyKind = 0xFFFFFFFFu;  // decided at run time
@@ -39,9 +42,9 @@ struct TraceSpecialization {
     static TraceSpecialization general();
     static TraceSpecialization forScene(const Scene& scene, const SceneFeatures& features);
 
-    // The constants in constant_id order, as VkSpecializationInfo reads them.
-    static constexpr std::size_t kConstantCount = 13;
-    std::array<std::uint32_t, kConstantCount> constants() const;
+    // All of trace.comp's specialization constants by id (shaders/shared/trace_constants.h): the
+    // scene's set, the kernel's role and device's left 0 (host/gpu/trace_pipeline.cpp sets them).
+    TraceKernelConstants constants() const;
     std::vector<std::string> describe() const;  // one line a setting, for `vitrum info`
 };
 

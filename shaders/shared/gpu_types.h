@@ -5,19 +5,9 @@
 #ifndef VITRUM_GPU_TYPES_H
 #define VITRUM_GPU_TYPES_H
 
-#ifdef __cplusplus
-#include <cstdint>
-#include <glm/glm.hpp>
-namespace vitrum::gpu {
-using vec2 = glm::vec2;
-using vec3 = glm::vec3;
-using vec4 = glm::vec4;
-using uvec4 = glm::uvec4;
-using uint = std::uint32_t;
-#define VITRUM_CONST constexpr
-#else
-#define VITRUM_CONST const
-#endif
+#include "language.h"
+
+VITRUM_GPU_BEGIN
 
 // ---- BVH -----------------------------------------------------------------------------------
 // A flattened binary BVH in depth-first order (pbrt-v4's LinearBVHNode): an interior node's
@@ -213,42 +203,6 @@ struct TraceState {
                                          // closest-hit traversal: the candidates' t
 };
 
-// ---- Render statistics (storage buffer of uints, one counter each) -----------------------------
-// Zeroed before and read after every dispatch by the host, which sums them in 64 bits: a single
-// dispatch cannot overflow them. The same buffer holds the dispatch's work cursor (kWorkCursor).
-VITRUM_CONST uint kStatPrimaryRays = 0u;
-VITRUM_CONST uint kStatShadowRays = 1u;
-VITRUM_CONST uint kStatReflectionRays = 2u;
-VITRUM_CONST uint kStatRefractionRays = 3u;
-VITRUM_CONST uint kStatUnfinishedPixels = 4u;    // pixels of this tile that need another dispatch
-                                                 // (after the first dispatch: pixels to restart)
-VITRUM_CONST uint kStatLoopLimitSuspected = 5u;  // the main loop ended without a reason of ours
-VITRUM_CONST uint kStatTraversalStackOverflow = 6u;
-VITRUM_CONST uint kStatDepthLimitHits = 7u;
-VITRUM_CONST uint kStatNodeVisits = 8u;
-VITRUM_CONST uint kStatTraversalSteps = 9u;      // iterations of the main loop
-VITRUM_CONST uint kStatRayStackOverflow = 10u;   // branches dropped: pending-ray stack full
-VITRUM_CONST uint kStatMediumStackOverflow = 11u;
-VITRUM_CONST uint kStatWeightCuts = 12u;         // branches skipped by min_weight
-VITRUM_CONST uint kStatTotalInternalReflections = 13u;
-VITRUM_CONST uint kStatAbsorbedEscapes = 14u;    // rays leaving the scene inside an absorbing medium
-VITRUM_CONST uint kStatTouchingInterfaces = 15u; // glass hits where other objects' surfaces touch
-VITRUM_CONST uint kStatInconsistentMedia = 16u;  // a ray left an object it was not inside
-VITRUM_CONST uint kStatTouchingProbes = 17u;     // glass hits whose touching surfaces were looked for
-VITRUM_CONST uint kStatRestartedSteps = 18u;     // steps of first attempts given up (see kResumable)
-VITRUM_CONST uint kStatGroupSteps = 19u;         // steps the SIMD groups ran, as the budget counts
-                                                 // them: each group once, first attempts included
-// The counters from kStatFirstMax on are maxima (atomicMax), the others sums.
-VITRUM_CONST uint kStatFirstMax = 20u;
-VITRUM_CONST uint kStatMaxPixelSteps = 20u;      // most loop steps one pixel needed
-VITRUM_CONST uint kStatMaxRayDepth = 21u;        // deepest ray traced
-VITRUM_CONST uint kStatMaxMediumDepth = 22u;     // most media one ray was inside
-VITRUM_CONST uint kStatCount = 23u;
-// Not a statistic, but zeroed with them: the dispatch's next unit of work, which each subgroup
-// takes as it starts (trace.comp's tilePixel).
-VITRUM_CONST uint kWorkCursor = 23u;
-VITRUM_CONST uint kDispatchCounterCount = 24u;  // the buffer's uints: the statistics and the cursor
-
 // ---- Sampling -------------------------------------------------------------------------------
 // The integer hash both backends use for jitter, so that their samples are bit-identical:
 // PCG's output permutation (Jarzynski and Olano, "Hash Functions for GPU Rendering", JCGT 2020).
@@ -269,7 +223,5 @@ float hashToUnit(uint h) {
     return float(h >> 8u) * (1.0f / 16777216.0f);
 }
 
-#ifdef __cplusplus
-}  // namespace vitrum::gpu
-#endif
+VITRUM_GPU_END
 #endif

@@ -222,15 +222,16 @@ TEST(TraceSpecialization, LambertSceneGetsAKernelWithoutGlassOrStacks) {
     EXPECT_EQ(general.mediumStackDepth, gpu::kMaxMediumDepth);
     EXPECT_EQ(general.pendingRayCapacity, gpu::kRayStackSize);
     EXPECT_EQ(general.backgroundKind, TraceSpecialization::kAnyKind);
-    // The constants in constant_id order (shaders/specialization.glsl).
+    // The constants by id (shaders/shared/trace_constants.h).
     const auto c = s.constants();
-    EXPECT_EQ(c[0], s.materialModels);
-    EXPECT_EQ(c[1], 1u);  // shadow rays
-    EXPECT_EQ(c[3], 0u);  // touching probe
-    EXPECT_EQ(c[8], 1u);  // medium stack depth
-    EXPECT_EQ(c[9], 0u);  // pending rays
-    EXPECT_EQ(c[11], 0u);  // glass on opaque surfaces
-    EXPECT_EQ(c[12], 0u);  // coincident opaque surfaces
+    EXPECT_EQ(c[gpu::kConstantMaterialModels], s.materialModels);
+    EXPECT_EQ(c[gpu::kConstantShadowRays], 1u);
+    EXPECT_EQ(c[gpu::kConstantTouchingProbe], 0u);
+    EXPECT_EQ(c[gpu::kConstantMediumStackDepth], 1u);
+    EXPECT_EQ(c[gpu::kConstantPendingRayCapacity], 0u);
+    EXPECT_EQ(c[gpu::kConstantOpaqueContact], 0u);
+    EXPECT_EQ(c[gpu::kConstantCoincidentOpaque], 0u);
+    EXPECT_EQ(c[gpu::kConstantResumable], 0u);  // the kernel's role: set by the pipeline, not the scene
 }
 
 }  // namespace

@@ -95,15 +95,15 @@ inline std::size_t differingPixels(const Image& a, const Image& b) {
 // Two renders of the same rays (the specialized kernel and the general one, say) counted the same
 // work and met the same limits.
 inline void expectSameWork(const RenderStats& a, const RenderStats& b) {
-    EXPECT_EQ(a.rays.primary, b.rays.primary);
-    EXPECT_EQ(a.rays.shadow, b.rays.shadow);
-    EXPECT_EQ(a.rays.reflection, b.rays.reflection);
-    EXPECT_EQ(a.rays.refraction, b.rays.refraction);
-    EXPECT_EQ(a.limits.depthLimit, b.limits.depthLimit);
-    EXPECT_EQ(a.limits.rayStackOverflow, b.limits.rayStackOverflow);
-    EXPECT_EQ(a.limits.mediumStackOverflow, b.limits.mediumStackOverflow);
-    EXPECT_EQ(a.limits.inconsistentMedia, b.limits.inconsistentMedia);
-    EXPECT_EQ(a.limits.weightCuts, b.limits.weightCuts);
+    EXPECT_EQ(a.primaryRays, b.primaryRays);
+    EXPECT_EQ(a.shadowRays, b.shadowRays);
+    EXPECT_EQ(a.reflectionRays, b.reflectionRays);
+    EXPECT_EQ(a.refractionRays, b.refractionRays);
+    EXPECT_EQ(a.depthLimitHits, b.depthLimitHits);
+    EXPECT_EQ(a.rayStackOverflows, b.rayStackOverflows);
+    EXPECT_EQ(a.mediumStackOverflows, b.mediumStackOverflows);
+    EXPECT_EQ(a.inconsistentMedia, b.inconsistentMedia);
+    EXPECT_EQ(a.weightCuts, b.weightCuts);
     EXPECT_EQ(a.totalInternalReflections, b.totalInternalReflections);
     EXPECT_EQ(a.touchingInterfaces, b.touchingInterfaces);
     EXPECT_EQ(a.maxRayDepth, b.maxRayDepth);

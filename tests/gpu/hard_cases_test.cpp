@@ -418,7 +418,7 @@ TEST(HardCaseSlab, CentrePixelIsTheInternalReflectionSeriesOnBothBackends) {
             EXPECT_NEAR(p.gpu.at(4, 4).x, expected, 2e-6);
             EXPECT_NEAR(p.cpu.at(4, 4).x, expected, 2e-6);
             EXPECT_NEAR(p.gpu.at(4, 4).x, p.cpu.at(4, 4).x, 1e-6);
-            EXPECT_EQ(p.gpuStats.limits.rayStackOverflow, 0u);
+            EXPECT_EQ(p.gpuStats.rayStackOverflows, 0u);
         }
     }
     EXPECT_NEAR(slabSeries(r, 3), r + (1 - r) * (1 - r), 1e-15);  // R + T^2
@@ -608,8 +608,8 @@ TEST(HardCaseCameraOnSurface, CameraOnAGlassFaceLooksIntoTheGlassFromItsMedium) 
     RenderPair on = renderBoth(scene);
     RenderPair below = renderBoth(inside);
     expectImagesMatch(on);
-    EXPECT_EQ(on.gpuStats.limits.inconsistentMedia, 0u);
-    EXPECT_EQ(on.cpuStats.limits.inconsistentMedia, 0u);
+    EXPECT_EQ(on.gpuStats.inconsistentMedia, 0u);
+    EXPECT_EQ(on.cpuStats.inconsistentMedia, 0u);
     for (const Image* image : {&on.gpu, &on.cpu}) {
         const ImageDiff d = diffImages(*image, image == &on.gpu ? below.gpu : below.cpu);
         EXPECT_LE(d.maxAbsError, 2e-3) << "mean " << d.meanAbsError;
@@ -640,9 +640,9 @@ TEST(HardCaseTouching, CoincidentSurfacesStayFiniteAndMatchOnBothBackends) {
         SCOPED_TRACE(name);
         RenderPair p = renderBoth(scene);
         expectImagesMatch(p);
-        EXPECT_EQ(p.gpuStats.limits.inconsistentMedia, 0u);
-        EXPECT_EQ(p.cpuStats.limits.inconsistentMedia, 0u);
-        EXPECT_EQ(p.gpuStats.limits.mediumStackOverflow, 0u);
+        EXPECT_EQ(p.gpuStats.inconsistentMedia, 0u);
+        EXPECT_EQ(p.cpuStats.inconsistentMedia, 0u);
+        EXPECT_EQ(p.gpuStats.mediumStackOverflows, 0u);
     }
 }
 
@@ -690,8 +690,8 @@ TEST(HardCaseGlassOnOpaque, AGlassBlockStandingOnAFloorShowsTheFloorBeneathIt) {
     RenderStats doubleStats;
     const Image inDouble = renderReference(scene, buildBvh(scene.triangles), {.doublePrecision = true}, doubleStats);
     EXPECT_LE(diffImages(standing.cpu, inDouble).maxAbsError, 1e-4);
-    EXPECT_EQ(standing.gpuStats.limits.inconsistentMedia, 0u);
-    EXPECT_EQ(standing.cpuStats.limits.inconsistentMedia, 0u);
+    EXPECT_EQ(standing.gpuStats.inconsistentMedia, 0u);
+    EXPECT_EQ(standing.cpuStats.inconsistentMedia, 0u);
 }
 
 TEST(HardCaseGlassOnOpaque, AGlassBlockJustBeyondTheTouchingDistanceKeepsItsGap) {
@@ -897,14 +897,14 @@ TEST(HardCaseDegenerate, DegenerateGeometryIsCountedNotFatal) {
     }
     RenderPair p = renderBoth(scene);
     expectImagesMatch(p);
-    std::cout << "degenerate scene: inconsistent media GPU " << p.gpuStats.limits.inconsistentMedia << ", CPU "
-              << p.cpuStats.limits.inconsistentMedia << "\n";
-    EXPECT_GT(p.gpuStats.limits.inconsistentMedia, 0u);
-    EXPECT_GT(p.cpuStats.limits.inconsistentMedia, 0u);
+    std::cout << "degenerate scene: inconsistent media GPU " << p.gpuStats.inconsistentMedia << ", CPU "
+              << p.cpuStats.inconsistentMedia << "\n";
+    EXPECT_GT(p.gpuStats.inconsistentMedia, 0u);
+    EXPECT_GT(p.cpuStats.inconsistentMedia, 0u);
     // Same rule on both: the counts differ only by the few edge pixels where the backends' ray
     // trees differ (expectImagesMatch allows 0.5% of pixels).
-    const double gpuCount = double(p.gpuStats.limits.inconsistentMedia),
-                 cpuCount = double(p.cpuStats.limits.inconsistentMedia);
+    const double gpuCount = double(p.gpuStats.inconsistentMedia),
+                 cpuCount = double(p.cpuStats.inconsistentMedia);
     EXPECT_NEAR(gpuCount, cpuCount, 0.05 * std::max(gpuCount, cpuCount));
 }
 
@@ -1011,10 +1011,10 @@ TEST(HardCaseDeepTree, HallOfGlassAtDepth10StaysFiniteAndReportsTheDepthLimit) {
     scene.settings.maxDepth = 10;
     RenderPair p = renderBoth(scene);
     expectImagesMatch(p);
-    EXPECT_GT(p.gpuStats.limits.depthLimit, 0u);
-    EXPECT_GT(p.cpuStats.limits.depthLimit, 0u);
+    EXPECT_GT(p.gpuStats.depthLimitHits, 0u);
+    EXPECT_GT(p.cpuStats.depthLimitHits, 0u);
     EXPECT_EQ(p.gpuStats.maxRayDepth, 9u);              // depth < max_depth
-    EXPECT_EQ(p.gpuStats.limits.rayStackOverflow, 0u);  // 10 - 1 < 16: the whole tree fits
+    EXPECT_EQ(p.gpuStats.rayStackOverflows, 0u);  // 10 - 1 < 16: the whole tree fits
 }
 
 TEST(HardCaseDeepTree, Depth64OverflowsTheGpuRayStackAndSaysSo) {
@@ -1032,8 +1032,8 @@ TEST(HardCaseDeepTree, Depth64OverflowsTheGpuRayStackAndSaysSo) {
     RenderPair p = renderBoth(scene);
     EXPECT_TRUE(finitePixels(p.gpu));
     EXPECT_TRUE(finitePixels(p.cpu));
-    std::cout << "depth 64: GPU ray-stack overflows " << p.gpuStats.limits.rayStackOverflow << ", deepest ray "
-              << p.gpuStats.maxRayDepth << "; CPU overflows " << p.cpuStats.limits.rayStackOverflow
+    std::cout << "depth 64: GPU ray-stack overflows " << p.gpuStats.rayStackOverflows << ", deepest ray "
+              << p.gpuStats.maxRayDepth << "; CPU overflows " << p.cpuStats.rayStackOverflows
               << "; largest GPU deficit " <<
         [&] {
             float worst = 0.0f;
@@ -1041,12 +1041,12 @@ TEST(HardCaseDeepTree, Depth64OverflowsTheGpuRayStackAndSaysSo) {
                 worst = std::max(worst, p.cpu.pixels[i].x - p.gpu.pixels[i].x);
             return worst;
         }() << "\n";
-    EXPECT_GT(p.gpuStats.limits.rayStackOverflow, 0u);
-    EXPECT_EQ(p.cpuStats.limits.rayStackOverflow, 0u);
+    EXPECT_GT(p.gpuStats.rayStackOverflows, 0u);
+    EXPECT_EQ(p.cpuStats.rayStackOverflows, 0u);
     // The reflection is never the branch dropped: the chain goes on to max_depth, as on the CPU.
     EXPECT_EQ(p.gpuStats.maxRayDepth, 63u);
-    EXPECT_GT(p.gpuStats.limits.depthLimit, 0u);
-    EXPECT_GT(p.cpuStats.limits.depthLimit, 0u);
+    EXPECT_GT(p.gpuStats.depthLimitHits, 0u);
+    EXPECT_GT(p.cpuStats.depthLimitHits, 0u);
     for (std::size_t i = 0; i < p.gpu.pixels.size(); ++i) {
         EXPECT_LE(p.gpu.pixels[i].x, p.cpu.pixels[i].x + 1e-5f) << "pixel " << i;
         EXPECT_LE(p.cpu.pixels[i].x, 1.0f + 1e-5f) << "pixel " << i;  // energy: no light is made
@@ -1085,8 +1085,8 @@ TEST(HardCaseDeepTree, RayThroughTheDeepestNestOfBoxesNeverOverflowsTheTraversal
     EXPECT_GT(bvh.stats.maxDepth, 28u);  // the case is as deep as intended
     RenderPair p = renderBoth(scene);
     std::cout << "    depth " << bvh.stats.maxDepth << ", GPU boxes tested a ray "
-              << double(p.gpuStats.nodeVisits) / double(p.gpuStats.rays.total()) << " (" << p.gpuStats.rays.primary << " primary, " << p.gpuStats.rays.shadow << " shadow rays)\n";
-    EXPECT_EQ(p.gpuStats.limits.traversalStackOverflow, 0u);
+              << double(p.gpuStats.nodeVisits) / double(p.gpuStats.totalRays()) << " (" << p.gpuStats.primaryRays << " primary, " << p.gpuStats.shadowRays << " shadow rays)\n";
+    EXPECT_EQ(p.gpuStats.traversalStackOverflows, 0u);
     EXPECT_EQ(p.diff.shareOver005, 0.0);
     expectImagesMatch(p);
 }
@@ -1110,10 +1110,10 @@ TEST(HardCaseDeepTree, FiveNestedMediaOverflowTheGpuMediumStackAndSaySo) {
     RenderPair p = renderBoth(scene);
     EXPECT_TRUE(finitePixels(p.gpu));
     EXPECT_TRUE(finitePixels(p.cpu));
-    EXPECT_GT(p.gpuStats.limits.mediumStackOverflow, 0u);
+    EXPECT_GT(p.gpuStats.mediumStackOverflows, 0u);
     EXPECT_EQ(p.gpuStats.maxMediumDepth, 4u);
-    EXPECT_EQ(p.cpuStats.limits.mediumStackOverflow, 0u);
-    EXPECT_GT(p.gpuStats.limits.inconsistentMedia, p.cpuStats.limits.inconsistentMedia);
+    EXPECT_EQ(p.cpuStats.mediumStackOverflows, 0u);
+    EXPECT_GT(p.gpuStats.inconsistentMedia, p.cpuStats.inconsistentMedia);
 }
 
 // ---- Equal indices in an image -------------------------------------------------------------
@@ -1134,7 +1134,7 @@ TEST(HardCaseEqualIndices, GlassWithTheAirsIndexIsInvisibleAndCostsNoDepth) {
     expectImagesMatch(b);
     EXPECT_LE(diffImages(a.gpu, b.gpu).maxAbsError, 1e-4);
     EXPECT_LE(diffImages(a.cpu, b.cpu).maxAbsError, 1e-4);
-    EXPECT_EQ(b.gpuStats.limits.depthLimit, 0u);
+    EXPECT_EQ(b.gpuStats.depthLimitHits, 0u);
 }
 
 // ---- Grazing incidence in an image ---------------------------------------------------------

@@ -55,7 +55,7 @@ TEST(PersistentSubgroups, TraceWhatOneUnitASubgroupTraces) {
         const Render persistent = render(file, 70, 38, true);
         const Render oneUnit = render(file, 70, 38, false);
         expectSameWork(persistent, oneUnit, file);
-        EXPECT_GT(persistent.stats.rays.total(), 70u * 38u) << file;
+        EXPECT_GT(persistent.stats.totalRays(), 70u * 38u) << file;
     }
 }
 
@@ -71,7 +71,7 @@ TEST(PersistentSubgroups, DispatchAgainWhileUnitsAreLeft) {
     if (persistentHere()) {
         EXPECT_EQ(persistent.stats.dispatches, 8u);
     }
-    EXPECT_EQ(persistent.stats.limits.loopLimitSuspected, 0u);
+    EXPECT_EQ(persistent.stats.loopLimitSuspected, 0u);
 }
 
 // A small budget gives up pixels in the first dispatch, which the resumable kernel (never

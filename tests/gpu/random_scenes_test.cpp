@@ -295,7 +295,7 @@ TEST(RandomScenes, GpuMatchesTheCpuReferenceOnEveryScene) {
         // a ray passes within an ulp of an edge may differ, nothing more. Not its check that the
         // image varies: a camera inside a mirror box at depth 1 rightly sees black.
         expectImagesAgree(p);
-        EXPECT_EQ(p.gpuStats.rays.primary, p.cpuStats.rays.primary);
+        EXPECT_EQ(p.gpuStats.primaryRays, p.cpuStats.primaryRays);
     });
 }
 

@@ -57,7 +57,7 @@ TEST(RaySharing, TakenRaysChangeNothingButTheGroupsSteps) {
     const Render alone = render(scene, StatisticsSums::subgroupAdd, 65400);
     EXPECT_EQ(shared.image.pixels, alone.image.pixels);
     EXPECT_EQ(counters(shared.stats), counters(alone.stats));
-    EXPECT_GT(shared.stats.limits.rayStackOverflow, 0u) << "the scene no longer overflows the pending-ray stack";
+    EXPECT_GT(shared.stats.rayStackOverflows, 0u) << "the scene no longer overflows the pending-ray stack";
     EXPECT_EQ(alone.stats.restartedPixels, 0u);
     // The point of it: idle lanes worked, so the groups ran fewer steps; never fewer than the
     // lanes' steps spread evenly over all lanes.
@@ -84,7 +84,7 @@ TEST(RaySharing, TakenRaysOfEarlierSamplesChangeNothingThatIsTraced) {
         b.erase(differs);
     }
     EXPECT_EQ(a, b);
-    EXPECT_GT(shared.stats.limits.rayStackOverflow, 0u) << "the scene no longer overflows the pending-ray stack";
+    EXPECT_GT(shared.stats.rayStackOverflows, 0u) << "the scene no longer overflows the pending-ray stack";
     EXPECT_LT(shared.stats.groupLoopSteps, alone.stats.groupLoopSteps);
 }
 
@@ -114,7 +114,7 @@ TEST(RaySharing, AGroupCutAfterATakeGivesUpAllItsPixels) {
         EXPECT_EQ(r->image.pixels, whole.image.pixels);
         EXPECT_EQ(toJson(r->stats)["rays"], toJson(whole.stats)["rays"]);
         EXPECT_EQ(r->stats.nodeVisits, whole.stats.nodeVisits);
-        EXPECT_EQ(r->stats.limits.loopLimitSuspected, 0u);
+        EXPECT_EQ(r->stats.loopLimitSuspected, 0u);
     }
 }
 

@@ -35,7 +35,7 @@ TEST_P(Specialization, SpecializedAndGeneralKernelsGiveTheSameImage) {
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
     EXPECT_EQ(differingPixels(a, b), 0u) << "pixels that differ in any bit, of " << a.pixels.size();
     EXPECT_GT(imageSpread(a), 0.0) << "a constant image would match anything";
-    EXPECT_GT(general.rays.total(), 0u);
+    EXPECT_GT(general.totalRays(), 0u);
     expectSameWork(general, specialized);
     // The specialized kernel never overflows a stack that the general one does not: its stacks
     // are sized to what the scene can reach.
@@ -68,7 +68,7 @@ TEST(Specialization, SeparateGlassSpheresRunNoTouchingProbeInTheSpecializedKerne
     EXPECT_EQ(specialized.kernel->mediumStackDepth, 1u);
     EXPECT_EQ(specialized.kernel->pendingRayCapacity, 9u);
     EXPECT_EQ(specialized.maxMediumDepth, 1u);
-    EXPECT_EQ(specialized.limits.mediumStackOverflow, 0u);
+    EXPECT_EQ(specialized.mediumStackOverflows, 0u);
     EXPECT_EQ(specialized.stateBytesPerPixel, sizeof(gpu::TraceState) + 9 * sizeof(gpu::PendingRay) +
                                              gpu::kTraversalStackSize * sizeof(std::uint32_t));
     EXPECT_EQ(general.stateBytesPerPixel, sizeof(gpu::TraceState) + 16 * sizeof(gpu::PendingRay) +
@@ -87,7 +87,7 @@ TEST(Specialization, DeepTreeFitsTheSizedPendingStack) {
     Image a = renderOnGpu(scene, bvh, false, general);
     Image b = renderOnGpu(scene, bvh, true, specialized);
     EXPECT_EQ(specialized.kernel->pendingRayCapacity, 14u);
-    EXPECT_EQ(specialized.limits.rayStackOverflow, 0u);
+    EXPECT_EQ(specialized.rayStackOverflows, 0u);
     EXPECT_GT(specialized.maxRayDepth, 10u);
     EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec3)), 0);
 }
@@ -130,7 +130,7 @@ TEST(Specialization, RaysThatSeemToEnterAnObjectTwiceKeepTheStackTheNestingBound
     EXPECT_EQ(testDevice().validationMessages(), before);
     ASSERT_EQ(specialized.kernel->mediumStackDepth, 2u);
     EXPECT_EQ(general.maxMediumDepth, 2u);
-    EXPECT_EQ(general.limits.mediumStackOverflow, 0u);
+    EXPECT_EQ(general.mediumStackOverflows, 0u);
     expectSameWork(general, specialized);
     EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(glm::vec3)), 0);
     EXPECT_GT(imageSpread(a), 0.0);

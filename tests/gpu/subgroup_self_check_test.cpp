@@ -62,7 +62,7 @@ TEST(SubgroupSelfCheck, AFailedCheckGivesTheSafeKernelAndTheSameImage) {
     const Image safe = renderVulkan(failing, scene, bvh, VulkanRenderOptions{}, safeStats);
     EXPECT_EQ(failing.validationMessages(), 0u);
     EXPECT_EQ(fast.pixels, safe.pixels);
-    EXPECT_EQ(fastStats.rays.primary, std::uint64_t(64 * 48));
+    EXPECT_EQ(fastStats.primaryRays, std::uint64_t(64 * 48));
     EXPECT_EQ(countersWithoutTimes(fastStats, {"group_loop_steps", "dispatches"}),
               countersWithoutTimes(safeStats, {"group_loop_steps", "dispatches"}));
 }

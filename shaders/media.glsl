@@ -1,0 +1,91 @@
+// The medium stack of a ray (render model: "Media: the IOR stack"): the objects it is inside,
+// innermost last, and what it crosses at a glass surface.
+#ifndef VITRUM_MEDIA_GLSL
+#define VITRUM_MEDIA_GLSL
+
+#include "trace_state.glsl"
+#include "counters.glsl"
+#include "bindings.glsl"
+#include "specialization.glsl"
+#include "ieee_vector_math.glsl"
+
+// IOR of the medium inside the innermost of `count` objects in `media`, or of the scene's air.
+float ior(uvec4 media, uint count) {
+    if (!usesMaterial(kMaterialGlass) || count == 0u) return params.background.w;
+    return objectMedium(media[count - 1u]).w;
+}
+
+// IOR of the medium a ray is in.
+float mediumIor(PendingRay r) { return ior(r.media, mediaCount(r)); }
+
+vec3 mediumAttenuation(PendingRay r) {
+    if (!kAbsorption) return vec3(0.0);
+    uint count = mediaCount(r);
+    return count == 0u ? vec3(0.0) : objectMedium(r.media[count - 1u]).xyz;
+}
+
+// The medium stack, written without loops: every loop iteration counts against lavapipe's limit.
+// Removes the innermost entry of `object` (normally the top); a ray leaving an object it is not
+// inside (an open or badly wound mesh) keeps its stack, and that is counted.
+// The innermost place of `object` in the stack, or `count` where the ray is not inside it.
+uint innermostMedium(uvec4 media, uint count, uint object) {
+    uint found = count;
+    if (count > 0u && media[0] == object) found = 0u;
+    if (kMediumStackDepth > 1u && count > 1u && media[1] == object) found = 1u;
+    if (kMediumStackDepth > 2u && count > 2u && media[2] == object) found = 2u;
+    if (kMediumStackDepth > 3u && count > 3u && media[3] == object) found = 3u;
+    return found;
+}
+
+void leaveMedium(inout uvec4 media, inout uint count, uint object) {
+    uint found = innermostMedium(media, count, object);
+    if (found == count) {
+        counters.inconsistentMedia += 1u;
+        return;
+    }
+    if (kMediumStackDepth > 1u && found <= 0u && 1u < count) media[0] = media[1];
+    if (kMediumStackDepth > 2u && found <= 1u && 2u < count) media[1] = media[2];
+    if (kMediumStackDepth > 3u && found <= 2u && 3u < count) media[2] = media[3];
+    count -= 1u;
+}
+
+// Entering an object the ray is already inside keeps the stack, and is counted, as leaving one
+// it is not inside: a closed mesh cannot be entered twice (where rounding lost a crossing it can
+// seem so), and the stack never holds an object twice, so the nesting bounds its depth.
+void enterMedium(inout uvec4 media, inout uint count, uint object) {
+    if (innermostMedium(media, count, object) != count) {
+        counters.inconsistentMedia += 1u;
+        return;
+    }
+    if (count >= kMediumStackDepth) {
+        counters.mediumStackOverflows += 1u;
+        return;
+    }
+    media[count] = object;
+    count += 1u;
+}
+
+// Glass: the ray enters or leaves object k, decided by the geometric normal of the consistently
+// wound mesh; the medium stack says what is on the other side. Surfaces of other glass objects
+// touching the hit (st.touching) make one interface with it: the ray leaves, then enters, so
+// glass touching glass is glass -> glass (lecture: P2 is 1.5 -> 1.5, never 1.5 -> 1 -> 1.5).
+// Returns whether the ray enters the hit object; `media` and `count` become the stack beyond.
+bool crossGlass(inout uvec4 media, inout uint count) {
+    bool entering = ieeeDot(st.ray.direction.xyz, st.hitGeometricNormal.xyz) < 0.0;
+    uint touchingCount = kTouchingProbe ? st.touching.w : 0u;
+    if (touchingCount > 0u) counters.touchingInterfaces += 1u;
+    // Leaving first ...
+    if (!entering) leaveMedium(media, count, hitObject());
+    if (touchingCount > 0u && (st.touching.x & 0x80000000u) == 0u) leaveMedium(media, count, st.touching.x);
+    if (touchingCount > 1u && (st.touching.y & 0x80000000u) == 0u) leaveMedium(media, count, st.touching.y);
+    if (touchingCount > 2u && (st.touching.z & 0x80000000u) == 0u) leaveMedium(media, count, st.touching.z);
+    // ... then entering.
+    if (entering) enterMedium(media, count, hitObject());
+    if (touchingCount > 0u && (st.touching.x & 0x80000000u) != 0u) enterMedium(media, count, st.touching.x & 0x7FFFFFFFu);
+    if (touchingCount > 1u && (st.touching.y & 0x80000000u) != 0u) enterMedium(media, count, st.touching.y & 0x7FFFFFFFu);
+    if (touchingCount > 2u && (st.touching.z & 0x80000000u) != 0u) enterMedium(media, count, st.touching.z & 0x7FFFFFFFu);
+    counters.maxMediumDepth = max(counters.maxMediumDepth, count);
+    return entering;
+}
+
+#endif

@@ -1,0 +1,76 @@
+// The order of a pixel's rays: its samples' primary rays, then each ray tree depth first, the
+// pending rays last in first out.
+#ifndef VITRUM_RAY_TREE_GLSL
+#define VITRUM_RAY_TREE_GLSL
+
+#include "trace_state.glsl"
+#include "counters.glsl"
+#include "pending_rays.glsl"
+#include "ray_sharing.glsl"
+#include "bvh.glsl"
+#include "camera.glsl"
+#include "ray_offset.glsl"
+#include "ieee_vector_math.glsl"
+
+void beginRay() {
+    counters.maxRayDepth = max(counters.maxRayDepth, rayDepth(st.ray));
+    beginClosestTraversal();
+}
+
+// The next sample's primary ray through `pixel`.
+void startPrimaryRay(uvec2 pixel) {
+    uint pixelIndex = pixel.y * params.image.x + pixel.x;
+    uint k = st.colourLow.w;
+    vec2 position = vec2(pixel) + sampleOffsetInPixel(pixelIndex, k, params.image.z, params.pass.y);
+    vec3 d = cameraRayDirection(position);
+    // Off the surface the camera lies on (a normal of 0 where none), on the ray's side, with that
+    // side's media (host/render/camera_surface.h: primaryRayOrigin).
+    vec3 n = params.cameraSurface.xyz;
+    bool behind = ieeeDot(d, n) < 0.0;
+    st.ray.origin = vec4(offsetRayOrigin(params.cameraFrom.xyz, behind ? -n : n), uintBitsToFloat(0u));
+    uint media = behind ? params.pass.z : params.pass.x;
+    st.ray.direction = vec4(d, uintBitsToFloat(usesMaterial(kMaterialGlass) ? media : 0u));
+    st.ray.weight = vec4(1.0);
+    st.ray.media = behind ? params.cameraMediaBehind : params.cameraMedia;  // innermost last
+    st.control.y = 0u;
+    if (params.image.w == 0u) {
+        // max_depth 0: not even the primary ray is traced (render model); the sample is black.
+        counters.depthLimitHits += 1u;
+        st.control.x = kPhaseNextRay;
+        return;
+    }
+    counters.primaryRays += 1u;
+    beginClosestTraversal();
+}
+
+void nextRay() {
+    if (kPendingRayCapacity == 0u || st.control.y == gBottom) {
+        if (kRaySharing && gTaken) {
+            st.control.x = kPhaseDone;  // the taken tree is done: ray_sharing.glsl hands it back
+            return;
+        }
+        st.control.y = 0u;
+        gBottom = 0u;
+        st.colourLow.w += 1u;
+        st.control.x = kPhaseStartSample;
+        return;
+    }
+    st.control.y -= 1u;
+    loadPendingRay(pendingRayIndex(st.control.y));
+}
+
+// The next sample's primary ray, or the end of the pixel.
+void startSample(uvec2 pixel) {
+    if (st.colourLow.w >= params.image.z) st.control.x = kPhaseDone;
+    else startPrimaryRay(pixel);  // begins a traversal, or (max_depth 0) goes to kPhaseNextRay
+}
+
+// A pixel's first dispatch.
+void startPixel() {
+    st.colourLow = uvec4(0u);
+    st.colourHigh = uvec4(0u);
+    st.control = uvec4(kPhaseStartSample, 0u, 0u, 0u);
+    st.traversal.w = 0u;
+}
+
+#endif

@@ -1,0 +1,249 @@
+// What happens at a hit (render model, the lecture's Whitted shading): the background or the hit's
+// record, direct light and shadow rays, and the reflected and refracted children.
+#ifndef VITRUM_SHADING_GLSL
+#define VITRUM_SHADING_GLSL
+
+#include "trace_state.glsl"
+#include "counters.glsl"
+#include "pending_rays.glsl"
+#include "media.glsl"
+#include "ray_tree.glsl"
+#include "bvh.glsl"
+#include "optics.glsl"
+#include "ray_offset.glsl"
+#include "texture.glsl"
+#include "background.glsl"
+#include "touching.glsl"
+#include "ieee_vector_math.glsl"
+
+// What this round of shading (main's loop) adds to the pixel's colour: a float sum of a few
+// terms, added to the fixed-point sum once at the round's end (colour_sum.glsl).
+vec3 gRoundColour = vec3(0.0);
+
+// The closest-hit traversal of st.ray is over: record the hit (triangle `tri`, material `m`, both
+// read by main) or take the background.
+void finishTrace(TriangleVertices tri, GpuMaterial m) {
+    uint triangle = st.traversal.z;
+    // Beer-Lambert over the segment just travelled (render model: "Media: the IOR stack").
+    vec3 mu = mediumAttenuation(st.ray);
+    if (triangle == kNoTriangle) {
+        vec3 escaped = st.ray.weight.xyz * backgroundRadiance(st.ray.direction.xyz);
+        if (any(greaterThan(mu, vec3(0.0)))) {
+            // Only an open mesh lets a ray leave the scene inside an absorbing medium.
+            escaped *= vec3(equal(mu, vec3(0.0)));
+            counters.absorbedEscapes += 1u;
+        }
+        gRoundColour += escaped;
+        st.control.x = kPhaseNextRay;
+        return;
+    }
+    float t = st.traceDirection.w;
+    if (kAbsorption) st.ray.weight.xyz *= beerLambert(mu, t);  // exp(-0 t) is 1 only for finite t: not folded
+
+    mat3 normals = loadVertexNormals(triangle);
+    vec2 bary = st.hitUv.zw;
+    float w0 = 1.0 - bary.x - bary.y;
+    vec3 edgeCross = windingNormal(tri);
+    float crossLength = ieeeLength(edgeCross);
+    vec3 interpolated = w0 * normals[0] + bary.x * normals[1] + bary.y * normals[2];
+    float normalLength = ieeeLength(interpolated);
+    bool shadingValid = normalLength > 0.0 && !isinf(normalLength);
+    // A triangle whose corners are collinear has no geometric normal but can still be hit by
+    // rounding: fall back to the shading normal, else to facing the ray (hard-cases.md).
+    vec3 geometricNormal = crossLength > 0.0 && !isinf(crossLength)
+                               ? edgeCross / crossLength
+                               : (shadingValid ? interpolated / normalLength : -st.ray.direction.xyz);
+    vec3 shadingNormal = shadingValid ? interpolated / normalLength : geometricNormal;
+    // The hit point from the barycentrics, not origin + t d: it lies on the triangle to within
+    // rounding (Waechter and Binder).
+    vec3 position = w0 * tri.v0.xyz + bary.x * tri.v1.xyz + bary.y * tri.v2.xyz;
+    st.hitPosition = vec4(position, t);
+    st.hitNormal = vec4(shadingNormal, tri.v0.w);
+    st.hitGeometricNormal = vec4(geometricNormal, tri.v1.w);
+    if (kTextures) {  // only texture lookups read them
+        vec2 uv0, uv1, uv2;
+        loadCornerUvs(triangle, uv0, uv1, uv2);
+        st.hitUv.xy = w0 * uv0 + bary.x * uv1 + bary.y * uv2;
+    }
+
+    uint model = materialModel(m);
+    if (usesMaterial(kMaterialGlass) && model == kMaterialGlass) {
+        // Touching objects (lecture, "Problematic Cases"): the other glass surfaces within the
+        // touching distance of this hit along the ray, which the traversal collected.
+        float farthest = t;
+        uvec4 touching = uvec4(0u);
+        if (kTouchingProbe && params.tuning.z != 0.0) {
+            counters.touchingProbes += 1u;
+            touching = selectTouching(st.touching, st.probe, t + params.tuning.y, hitObject(), farthest);
+        }
+        st.touching = touching;
+        st.probe.x = farthest;
+        st.control.x = kPhaseScatter;
+        return;
+    }
+    // Opaque: both normals face the incoming ray.
+    vec3 d = st.ray.direction.xyz;
+    if (ieeeDot(geometricNormal, d) > 0.0) st.hitGeometricNormal.xyz = -geometricNormal;
+    if (ieeeDot(shadingNormal, d) > 0.0) st.hitNormal.xyz = -shadingNormal;
+    if (usesMaterial(kMaterialNormal) && model == kMaterialNormal) {
+        gRoundColour += st.ray.weight.xyz * (0.5 * st.hitNormal.xyz + 0.5);
+        st.control.x = kPhaseNextRay;
+        return;
+    }
+    st.control.z = 0u;
+    st.control.x = usesMaterial(kMaterialMirror) && model == kMaterialMirror ? kPhaseScatter : kPhaseNextLight;
+}
+
+vec3 diffuseColour(GpuMaterial m) {
+    uint texture = floatBitsToUint(m.diffuse.w);
+    return !kTextures || texture == kNoTexture ? m.diffuse.xyz
+                                 : sampleTexture(texture, vec2(st.hitUv.x, 1.0 - st.hitUv.y), true, true);
+}
+
+// The visibility-weighted part of light `index` at the hit: m_d max(0, n.l) (+ Phong's
+// m_s max(0, l_r.v)^Ns), times the light's colour and fall-off.
+vec3 directLight(GpuMaterial m, GpuLight light) {
+    vec3 p = st.hitPosition.xyz;
+    vec3 n = st.hitNormal.xyz;
+    vec3 toLight = light.position.xyz - p;
+    float distanceSquared = ieeeDot(toLight, toLight);
+    vec3 l = toLight / sqrt(distanceSquared);  // as the CPU reference divides
+    vec3 colour = light.colour.xyz;
+    if (light.position.w != 0.0) colour /= distanceSquared;
+    vec3 result = diffuseColour(m) * max(0.0, ieeeDot(n, l));
+    if (usesMaterial(kMaterialPhong) && materialModel(m) == kMaterialPhong) {
+        vec3 lr = 2.0 * ieeeDot(n, l) * n - l;
+        float c = max(0.0, ieeeDot(lr, -st.ray.direction.xyz));
+        float ns = m.specular.w;
+        float highlight = c > 0.0 ? pow(c, ns) : (ns == 0.0 ? 1.0 : 0.0);
+        result += m.specular.xyz * highlight;
+    }
+    return colour * result;
+}
+
+// Lambert and Phong: ambient from every light, then one shadow ray per light whose direct term
+// is not zero; the shadow ray carries that term (st.probe.yzw) to finishShadow.
+void nextLight(GpuMaterial m) {
+    uint index = st.control.z;
+    if (!kShadowRays || index >= params.counts.x) {
+        st.control.x = usesMaterial(kMaterialPhong) && materialModel(m) == kMaterialPhong ? kPhaseScatter : kPhaseNextRay;
+        return;
+    }
+    GpuLight light = loadLight(index);
+    gRoundColour += st.ray.weight.xyz * light.colour.xyz * m.ambient.xyz;
+    vec3 direct = directLight(m, light);
+    if (all(equal(direct, vec3(0.0)))) {
+        st.control.z = index + 1u;
+        return;
+    }
+    vec3 origin = offsetRayOrigin(st.hitPosition.xyz, st.hitGeometricNormal.xyz);
+    counters.shadowRays += 1u;
+    st.probe.yzw = direct;
+    beginTraversal(origin, light.position.xyz - origin, 0.0, 1.0);
+    st.control.x = kPhaseShadow;
+}
+
+void finishShadow() {
+    if (st.traversal.z == kNoTriangle) gRoundColour += st.ray.weight.xyz * st.probe.yzw;
+    st.control.z += 1u;
+    st.control.x = kPhaseNextLight;
+}
+
+// Whether a child of st.ray at `depth` with path weight `weight` is traced; a limit that stops
+// it is counted.
+bool admitChild(uint depth, vec3 weight) {
+    if (depth >= params.image.w) {
+        counters.depthLimitHits += 1u;
+        return false;
+    }
+    if (all(lessThan(weight, vec3(params.tuning.x)))) {
+        counters.weightCuts += 1u;
+        return false;
+    }
+    return true;
+}
+
+PendingRay childRay(vec3 origin, vec3 direction, vec3 weight, uvec4 media, uint count, uint depth) {
+    PendingRay r;
+    r.origin = vec4(origin, uintBitsToFloat(depth));
+    r.direction = vec4(direction, uintBitsToFloat(count));
+    r.weight = vec4(weight, 0.0);
+    r.media = media;
+    return r;
+}
+
+// Whether any material of this build spawns reflected or refracted rays.
+bool spawnsRays() {
+    return usesMaterial(kMaterialPhong) || usesMaterial(kMaterialMirror) || usesMaterial(kMaterialGlass);
+}
+
+
+// The hit's children. The one traced next goes on at once as st.ray: the reflection (of a
+// mirror, a Phong surface with Schlick's weight, or glass), or through an index-matched glass
+// interface the same ray with the new medium stack. Only a glass hit's refraction, whose
+// reflection goes first, waits in the pending-ray stack. So the kernel has one place that stores
+// a pending ray: on lavapipe each store costs a loop over the lanes every round, whether a lane
+// stores or not. The order is the one of pushing both and popping the reflection at once.
+//
+// lavapipe runs the code of every material in every round, masked, so the materials share one
+// reflection: its IOR lookup, Fresnel term, direction and origin are worked out once, from the
+// normals on the incoming ray's side (an opaque hit's were turned so by finishTrace).
+void scatter(GpuMaterial m) {
+    uint model = materialModel(m);
+    bool glass = usesMaterial(kMaterialGlass) && model == kMaterialGlass;
+    bool mirror = usesMaterial(kMaterialMirror) && model == kMaterialMirror;
+    vec3 d = st.ray.direction.xyz;
+    vec3 w = st.ray.weight.xyz;
+    uint depth = rayDepth(st.ray);
+    vec3 p = st.hitPosition.xyz;
+    vec3 facing = st.hitGeometricNormal.xyz;
+    vec3 n = st.hitNormal.xyz;
+    float n1 = mediumIor(st.ray);
+    float n2 = m.attenuation.w;
+    uvec4 media = st.ray.media;
+    uint count = mediaCount(st.ray);
+    vec3 through = p;  // where a transmitted ray starts: beyond every surface of the interface
+    if (usesMaterial(kMaterialGlass) && glass) {
+        bool entering = crossGlass(media, count);
+        if (!entering) n1 = m.attenuation.w;
+        if (!entering || (kTouchingProbe && st.touching.w > 0u)) n2 = ior(media, count);
+        if (!entering) facing = -facing;
+        if (!entering) n = -n;
+        if (ieeeDot(n, d) >= 0.0) n = facing;  // a shading normal on the wrong side: use the true one
+        if (kTouchingProbe && st.touching.w > 0u) through = st.ray.origin.xyz + st.probe.x * d;
+    }
+    // Index-matched glass: no optical interface; the same ray goes on with the new stack.
+    bool matched = glass && n1 == n2;
+    float eta = n1 / n2;
+    float cosI = -ieeeDot(d, n);
+    float cos2t = cosSquaredTransmitted(d, n, eta);
+    float r = fresnelReflectance(glass ? fresnelModel() : kFresnelSchlick, n1, n2, cosI, cos2t);
+    if (glass && !matched && cos2t < 0.0) counters.totalInternalReflections += 1u;
+    vec3 transmittedOrigin = offsetRayOrigin(through, -facing);
+    // Each child passes the depth and weight limits (or is counted).
+    if (usesMaterial(kMaterialGlass) && glass && !matched && cos2t >= 0.0 && admitChild(depth + 1u, w * (1.0 - r))) {
+        if (st.control.y >= kPendingRayCapacity) {
+            counters.rayStackOverflows += 1u;  // the refraction is dropped, never silently
+        } else {
+            PendingRay refracted = childRay(transmittedOrigin, refractDirection(d, n, eta, cos2t), w * (1.0 - r), media,
+                                            count, depth + 1u);
+            storePendingRay(pendingRayIndex(st.control.y), refracted);
+            st.control.y += 1u;
+            counters.refractionRays += 1u;
+        }
+    }
+    PendingRay next = matched ? childRay(transmittedOrigin, d, w, media, count, depth)
+                              : childRay(offsetRayOrigin(p, facing), reflectDirection(d, n), mirror ? w * m.specular.xyz : w * r,
+                                         st.ray.media, mediaCount(st.ray), depth + 1u);
+    // An index-matched continuation is the same ray going on at its own depth, not a new branch:
+    // neither max_depth nor min_weight stops it (as on the CPU).
+    if (matched || admitChild(rayDepth(next), next.weight.xyz)) {
+        if (!matched) counters.reflectionRays += 1u;
+        st.ray = next;
+        beginRay();
+    } else {
+        st.control.x = kPhaseNextRay;
+    }
+}
+
+#endif

@@ -1,0 +1,30 @@
+// The specialization constant ids of trace.comp: shaders/specialization.glsl declares a constant
+// at each, host/render/trace_specialization.cpp and host/gpu/trace_pipeline.cpp set them.
+#ifndef VITRUM_TRACE_CONSTANTS_H
+#define VITRUM_TRACE_CONSTANTS_H
+
+#include "language.h"
+
+VITRUM_GPU_BEGIN
+// What the scene needs (TraceSpecialization).
+VITRUM_CONST uint kConstantMaterialModels = 0u;
+VITRUM_CONST uint kConstantShadowRays = 1u;
+VITRUM_CONST uint kConstantAbsorption = 2u;
+VITRUM_CONST uint kConstantTouchingProbe = 3u;
+VITRUM_CONST uint kConstantTextures = 4u;
+VITRUM_CONST uint kConstantBackgroundKind = 5u;
+VITRUM_CONST uint kConstantFresnelModel = 6u;
+VITRUM_CONST uint kConstantTextureFilter = 7u;
+VITRUM_CONST uint kConstantMediumStackDepth = 8u;
+VITRUM_CONST uint kConstantPendingRayCapacity = 9u;
+VITRUM_CONST uint kConstantSingleSample = 10u;
+VITRUM_CONST uint kConstantOpaqueContact = 11u;
+VITRUM_CONST uint kConstantCoincidentOpaque = 12u;
+// The kernel's role and the device's guarantees (host/gpu/trace_pipeline.cpp).
+VITRUM_CONST uint kConstantResumable = 13u;
+VITRUM_CONST uint kConstantFullSubgroups = 14u;
+VITRUM_CONST uint kConstantPersistentSubgroups = 15u;
+VITRUM_CONST uint kTraceConstantCount = 16u;
+VITRUM_GPU_END
+
+#endif
