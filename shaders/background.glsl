@@ -46,12 +46,12 @@ vec3 cubeUv(vec3 d) {
 
 vec3 backgroundRadiance(vec3 d) {
     uint kind = backgroundKind();
-    if (kind == kBackgroundSpherical) return sampleTexture(params.environment.z, sphericalUv(d), true, false);
+    if (kind == kBackgroundSpherical) return sampleTexture(backgroundTexture(params), sphericalUv(d), true, false);
     if (kind == kBackgroundCube) {
         vec3 c = cubeUv(d);
-        return sampleTexture(params.environment.z + uint(c.x), c.yz, false, false);
+        return sampleTexture(backgroundTexture(params) + uint(c.x), c.yz, false, false);
     }
-    return params.background.xyz;
+    return backgroundColour(params);
 }
 
 #endif

@@ -36,26 +36,30 @@ const uint kFreshTraversal = 0xFFFFFFFFu;
 // Starts a traversal of the ray origin + t direction, tMin < t < tMax. The root is entered
 // without testing its box: its children's boxes are tested (or, for a one-leaf tree, its triangles).
 void beginTraversal(vec3 origin, vec3 direction, float tMin, float tMax) {
-    st.traceOrigin = vec4(origin, tMin);
-    st.traceDirection = vec4(direction, tMax);
-    st.control.w = kFreshTraversal;
-    st.traversal.xyz = uvec3(0u, 0u, kNoTriangle);
+    st.traversal.origin = origin;
+    st.traversal.tMin = tMin;
+    st.traversal.direction = direction;
+    st.traversal.tMax = tMax;
+    st.traversal.stackTop = kFreshTraversal;
+    st.traversal.leafCursor = 0u;
+    st.traversal.leafEnd = 0u;
+    st.traversal.closest = kNoTriangle;
 }
 
 // A closest-hit traversal of st.ray, with no touching candidates yet (touching.glsl), no
 // opaque surface under glass and none the ray leaves through (bvh.glsl's traverse).
 void beginClosestTraversal() {
     if (kTouchingProbe) {
-        st.touching = uvec4(0u);
-        st.probe = vec4(kNoCandidate);
+        st.candidates.touchingObjects = uvec4(0u);
+        st.candidates.touchingT = vec4(kNoCandidate);
     }
     if (kOpaqueContact) {
-        st.hitPosition = vec4(kNoCandidate, uintBitsToFloat(kNoTriangle), 0.0, 0.0);
-        st.hitNormal.x = 0.0;
+        st.candidates.contact = vec4(kNoCandidate, uintBitsToFloat(kNoTriangle), 0.0, 0.0);
+        st.candidates.closestIsGlass = false;
     }
-    if (kCoincidentOpaque) st.hitGeometricNormal = vec4(kNoCandidate, uintBitsToFloat(kNoTriangle), 0.0, 0.0);
+    if (kCoincidentOpaque) st.candidates.leaving = vec4(kNoCandidate, uintBitsToFloat(kNoTriangle), 0.0, 0.0);
     beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 0.0, 3.0e38);
-    st.control.x = kPhaseTrace;
+    st.phase = kPhaseTrace;
 }
 
 // One interior node of a traversal: tests both children's boxes, keeps the nearer hit child in
@@ -101,53 +105,52 @@ void visitInteriorNode(inout uint current, inout uint top, inout bool over, out 
 // `steps` is the group's count, the same in all its lanes on entry and on return. Each loop
 // iteration is one step: a triangle test, an interior node whose two children's boxes it tests
 // (in the manner of Aila and Laine 2009), or taking a leaf off the stack. Returns true when it is
-// over: the closest hit (or, for kTraverseAny, some hit) is in st.traversal.z, its t in
-// st.traceDirection.w and its barycentrics in st.hitUv.zw. With the touching probe on, a
-// closest-hit traversal also collects the glass triangles within the touching distance beyond
-// the closest hit (touching.glsl) in st.touching and st.probe. Returns false when the budget ran
+// over: the closest hit (or, for kTraverseAny, some hit) is st.traversal.closest, with its t in
+// tMax and its barycentrics. With the touching probe on, a closest-hit traversal also collects
+// the glass triangles within the touching distance beyond the closest hit (touching.glsl) in
+// st.candidates. Returns false when the budget ran
 // out first; the state is then back in `st` and a later call resumes it. A lane that is not
 // tracing returns true and leaves `st` as it was.
 //
 // The ray and the cursor live in locals while it runs, the stack in the private array gStack
-// (trace.comp saves it to traversalStacks[] only when the pixel is suspended mid-traversal).
+// (suspend.glsl saves it to traversalStacks[] only when the pixel is suspended mid-traversal).
 // Nodes are visited depth first, near child (by the split axis) first, as
 // host/bvh/bvh_traversal.cpp does, so both find the same closest triangle, ties included.
 bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
-    vec3 origin = st.traceOrigin.xyz;
-    float tMin = st.traceOrigin.w;
-    vec3 direction = st.traceDirection.xyz;
-    float tMax = st.traceDirection.w;
+    vec3 origin = st.traversal.origin;
+    float tMin = st.traversal.tMin;
+    vec3 direction = st.traversal.direction;
+    float tMax = st.traversal.tMax;
     BoxRay boxRay = makeBoxRay(origin, direction);
     TriangleRay triangleRay = makeTriangleRay(origin, direction);
-    uint cursor = st.traversal.x;
-    uint leafEnd = st.traversal.y;
-    uint closest = st.traversal.z;
-    vec2 barycentrics = st.hitUv.zw;
-    uint top = st.control.w;
-    bool collectTouching = kTouchingProbe && mode == kTraverseClosest && params.tuning.z != 0.0;
+    uint cursor = st.traversal.leafCursor;
+    uint leafEnd = st.traversal.leafEnd;
+    uint closest = st.traversal.closest;
+    vec2 barycentrics = st.traversal.barycentrics;
+    uint top = st.traversal.stackTop;
+    bool collectTouching = kTouchingProbe && mode == kTraverseClosest && touchingProbeOn(params);
     // Glass resting on an opaque surface (render-model-decisions.md, "Glass on an opaque
     // surface"): the nearest opaque triangle hit below the nearest hit so far plus e (ties: the
     // lower index), which the CPU reference's probe beyond a glass hit finds too, and whether the
     // nearest hit so far is glass. When the traversal is over and an opaque hit lies within e
-    // beyond a glass one, the opaque one is the hit. Kept in st.hitPosition and st.hitNormal.x,
-    // which only shading reads.
-    bool collectContact = kOpaqueContact && mode == kTraverseClosest && params.tuning.w != 0.0;
+    // beyond a glass one, the opaque one is the hit (st.candidates.contact, closestIsGlass).
+    bool collectContact = kOpaqueContact && mode == kTraverseClosest && opaqueContactOn(params);
     // Coincident opaque surfaces (render-model-decisions.md): the nearest opaque triangle hit from
     // behind (the ray leaves through it) below the nearest hit so far plus e, ties as above. When
-    // the traversal is over and it lies within e of the nearest hit, it is the hit. Kept in
-    // st.hitGeometricNormal, which only shading reads.
-    bool collectLeaving = kCoincidentOpaque && mode == kTraverseClosest && params.pass.w != 0u;
+    // the traversal is over and it lies within e of the nearest hit, it is the hit
+    // (st.candidates.leaving).
+    bool collectLeaving = kCoincidentOpaque && mode == kTraverseClosest && coincidentOpaqueOn(params);
     // Boxes and candidates are tested up to tMax + reach.
-    float reach = collectTouching || collectContact || collectLeaving ? params.tuning.y : 0.0;
-    uvec4 touchingObjects = st.touching;
-    vec4 touchingT = st.probe;
-    vec4 contact = st.hitPosition;  // t, triangle (bits), barycentrics
-    vec4 leaving = st.hitGeometricNormal;  // the same
-    bool closestGlass = st.hitNormal.x != 0.0;
+    float reach = collectTouching || collectContact || collectLeaving ? touchingDistance(params) : 0.0;
+    uvec4 touchingObjects = st.candidates.touchingObjects;
+    vec4 touchingT = st.candidates.touchingT;
+    vec4 contact = st.candidates.contact;
+    vec4 leaving = st.candidates.leaving;
+    bool closestGlass = st.candidates.closestIsGlass;
     uint current = kNoEntry;  // the entry to visit next, taken off the stack or kept from a visit
     if (top == kFreshTraversal) {
         top = 0u;
-        current = params.bvh.x;
+        current = bvhRoot(params);
     }
     bool over = !tracing;
     // Aila and Laine's "while-while": inner nodes until every lane of the SIMD group holds a leaf
@@ -257,19 +260,21 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
         closest = floatBitsToUint(contact.y);
         barycentrics = contact.zw;
     }
-    st.traceDirection.w = tMax;
-    st.traversal.xyz = uvec3(cursor, leafEnd, closest);
-    st.hitUv.zw = barycentrics;
-    st.control.w = top;
+    st.traversal.tMax = tMax;
+    st.traversal.leafCursor = cursor;
+    st.traversal.leafEnd = leafEnd;
+    st.traversal.closest = closest;
+    st.traversal.barycentrics = barycentrics;
+    st.traversal.stackTop = top;
     if (collectTouching) {
-        st.touching = touchingObjects;
-        st.probe = touchingT;
+        st.candidates.touchingObjects = touchingObjects;
+        st.candidates.touchingT = touchingT;
     }
     if (collectContact) {
-        st.hitPosition = contact;
-        st.hitNormal.x = closestGlass ? 1.0 : 0.0;
+        st.candidates.contact = contact;
+        st.candidates.closestIsGlass = closestGlass;
     }
-    if (collectLeaving) st.hitGeometricNormal = leaving;
+    if (collectLeaving) st.candidates.leaving = leaving;
     return over;
 }
 

@@ -17,26 +17,34 @@
 
 const float kColourSumLimit = 4294967040.0;  // the largest float below 2^32
 
-// low/high += addLow/addHigh, each channel a 64-bit number; a sum past 2^64 - 1 saturates.
-void addColourSums(inout uvec4 low, inout uvec4 high, uvec3 addLow, uvec3 addHigh) {
+// A sum of colours: each channel a 64-bit number, its low and high words.
+struct ColourSum {
+    uvec3 low;
+    uvec3 high;
+};
+
+const ColourSum kNoColour = ColourSum(uvec3(0u), uvec3(0u));
+
+// sum += add; a sum past 2^64 - 1 saturates.
+void addColourSums(inout ColourSum sum, ColourSum add) {
     uvec3 carry, wrapA, wrapB;
-    uvec3 sumLow = uaddCarry(low.xyz, addLow, carry);
-    uvec3 sumHigh = uaddCarry(high.xyz, addHigh, wrapA);
+    uvec3 sumLow = uaddCarry(sum.low, add.low, carry);
+    uvec3 sumHigh = uaddCarry(sum.high, add.high, wrapA);
     sumHigh = uaddCarry(sumHigh, carry, wrapB);
     bvec3 saturated = notEqual(wrapA | wrapB, uvec3(0u));
-    low.xyz = mix(sumLow, uvec3(0xFFFFFFFFu), saturated);
-    high.xyz = mix(sumHigh, uvec3(0xFFFFFFFFu), saturated);
+    sum.low = mix(sumLow, uvec3(0xFFFFFFFFu), saturated);
+    sum.high = mix(sumHigh, uvec3(0xFFFFFFFFu), saturated);
 }
 
 // Adds a colour (float) to the sum.
-void addColour(inout uvec4 low, inout uvec4 high, vec3 colour) {
+void addColour(inout ColourSum sum, vec3 colour) {
     // NaN compares false: it becomes 0 as a negative term does.
     vec3 c = mix(vec3(0.0), min(colour, vec3(kColourSumLimit)), greaterThan(colour, vec3(0.0)));
     uvec3 whole = uvec3(c);                                   // c >= 0: truncation is floor
     uvec3 fraction = uvec3((c - vec3(whole)) * 4294967296.0);  // exact: c - floor(c) and * 2^32
-    addColourSums(low, high, fraction, whole);
+    addColourSums(sum, ColourSum(fraction, whole));
 }
 
-vec3 colourOfSum(uvec4 low, uvec4 high) { return vec3(high.xyz) + vec3(low.xyz) * (1.0 / 4294967296.0); }
+vec3 colourOfSum(ColourSum sum) { return vec3(sum.high) + vec3(sum.low) * (1.0 / 4294967296.0); }
 
 #endif

@@ -17,11 +17,10 @@ void main() {
     // The last group may run past the end; both buffers hold exactly the cases.
     if (i >= uint(cases.length()) || i >= uint(results.length())) return;
     ColourSumCase c = cases[i];
-    uvec4 low = uvec4(c.startLow.xyz, 0u);
-    uvec4 high = uvec4(c.startHigh.xyz, 0u);
+    ColourSum sum = ColourSum(c.startLow.xyz, c.startHigh.xyz);
     uint terms = min(c.startLow.w, 4u);
-    for (uint t = 0u; t < terms; ++t) addColour(low, high, c.terms[t].xyz);
-    results[i].low = low;
-    results[i].high = high;
-    results[i].colour = vec4(colourOfSum(low, high), 0.0);
+    for (uint t = 0u; t < terms; ++t) addColour(sum, c.terms[t].xyz);
+    results[i].low = uvec4(sum.low, 0u);
+    results[i].high = uvec4(sum.high, 0u);
+    results[i].colour = vec4(colourOfSum(sum), 0.0);
 }

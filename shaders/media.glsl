@@ -11,7 +11,7 @@
 
 // IOR of the medium inside the innermost of `count` objects in `media`, or of the scene's air.
 float ior(uvec4 media, uint count) {
-    if (!usesMaterial(kMaterialGlass) || count == 0u) return params.background.w;
+    if (!usesMaterial(kMaterialGlass) || count == 0u) return airIor(params);
     return objectMedium(media[count - 1u]).w;
 }
 
@@ -71,16 +71,16 @@ void enterMedium(inout uvec4 media, inout uint count, uint object) {
 // glass touching glass is glass -> glass (lecture: P2 is 1.5 -> 1.5, never 1.5 -> 1 -> 1.5).
 // Returns whether the ray enters the hit object; `media` and `count` become the stack beyond.
 bool crossGlass(inout uvec4 media, inout uint count) {
-    bool entering = ieeeDot(st.ray.direction.xyz, st.hitGeometricNormal.xyz) < 0.0;
+    bool entering = ieeeDot(st.ray.direction.xyz, st.hit.geometricNormal) < 0.0;
     uint touchingCount = kTouchingProbe ? st.touching.w : 0u;
     if (touchingCount > 0u) counters.touchingInterfaces += 1u;
     // Leaving first ...
-    if (!entering) leaveMedium(media, count, hitObject());
+    if (!entering) leaveMedium(media, count, st.hit.object);
     if (touchingCount > 0u && (st.touching.x & 0x80000000u) == 0u) leaveMedium(media, count, st.touching.x);
     if (touchingCount > 1u && (st.touching.y & 0x80000000u) == 0u) leaveMedium(media, count, st.touching.y);
     if (touchingCount > 2u && (st.touching.z & 0x80000000u) == 0u) leaveMedium(media, count, st.touching.z);
     // ... then entering.
-    if (entering) enterMedium(media, count, hitObject());
+    if (entering) enterMedium(media, count, st.hit.object);
     if (touchingCount > 0u && (st.touching.x & 0x80000000u) != 0u) enterMedium(media, count, st.touching.x & 0x7FFFFFFFu);
     if (touchingCount > 1u && (st.touching.y & 0x80000000u) != 0u) enterMedium(media, count, st.touching.y & 0x7FFFFFFFu);
     if (touchingCount > 2u && (st.touching.z & 0x80000000u) != 0u) enterMedium(media, count, st.touching.z & 0x7FFFFFFFu);

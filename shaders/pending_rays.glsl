@@ -8,7 +8,7 @@
 #include "specialization.glsl"
 
 // This pixel's pending rays: entries 0 .. kPendingRayCapacity - 1 of its place in pendingRays
-// (pendingRayIndex), the ones waiting from gBottom up to st.control.y; below gBottom, those that
+// (pendingRayIndex), the ones waiting from gBottom up to st.pendingRays; below gBottom, those that
 // other lanes took (ray_sharing.glsl).
 uint gBottom = 0u;
 
@@ -27,7 +27,7 @@ uint pendingRayIndex(uint entry) { return entry * gPendingStride + gPendingPlace
 void placePendingRays(uint slot) {
     if (kResumable) {
         gPendingPlace = slot;
-        gPendingStride = params.tile.z * params.tile.w;
+        gPendingStride = tileWidth(params) * tileHeight(params);
     } else {
         uint invocations = gl_WorkGroupSize.x * gl_WorkGroupSize.y;
         uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
@@ -71,7 +71,7 @@ PendingRay readPendingRay(uint index) {
 void loadPendingRay(uint index) {
     gLoadIndex = index;
     gLoad = true;
-    st.control.x = kPhaseTrace;  // beginRay, once the ray is read, begins its traversal
+    st.phase = kPhaseTrace;  // beginRay, once the ray is read, begins its traversal
 }
 
 // A unit's pixel starts with no pending rays and none to read.

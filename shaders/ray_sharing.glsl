@@ -42,10 +42,8 @@ const bool kRaySharing = kFullSubgroups && !kResumable && kPendingRayCapacity > 
 
 bool gTaken = false;     // this lane traces (or has traced) a tree taken from its owner gOwner
 uint gOwner = 0u;
-// This lane's own pixel's colour sum (.xyz, as st.colourLow/High) and steps, kept while it
-// traces a taken tree.
-uvec4 gOwnLow = uvec4(0u);
-uvec4 gOwnHigh = uvec4(0u);
+// This lane's own pixel's colour sum and steps, kept while it traces a taken tree.
+ColourSum gOwnColour = kNoColour;
 uint gOwnSteps = 0u;
 bool gGroupTook = false;  // some lane of the group took a ray: the same in every lane
 // The lane that gives a pending ray this round, plus one (0: none), the same in every lane. The
@@ -59,8 +57,7 @@ bool gReceives = false;  // this lane takes the ray given this round
 void resetRaySharing() {
     gTaken = false;
     gOwner = 0u;
-    gOwnLow = uvec4(0u);
-    gOwnHigh = uvec4(0u);
+    gOwnColour = kNoColour;
     gOwnSteps = 0u;
     gGroupTook = false;
     gGiver = 0u;
@@ -75,36 +72,34 @@ void resetRaySharing() {
 // 3.3% more, for more work every round: docs/gpu-design.md.)
 void shareRays(bool canTake) {
     uint self = gl_SubgroupInvocationID;
-    bool idle = st.control.x == kPhaseDone;
+    bool idle = st.phase == kPhaseDone;
     // The lane served this round: one done with a taken tree first (its owner waits for it),
     // else any idle one.
     uint servedKey = idle && (gTaken || canTake) ? (gTaken ? 0x100u : 0u) | (self + 1u) : 0u;
     uint served = groupMax(servedKey);
     // The lane to take from: the most pending rays (of the lowest lane among equals), of those
     // that read no ray of their own this round (the given ray is read where theirs would be).
-    uint available = idle || gLoad ? 0u : st.control.y - gBottom;
+    uint available = idle || gLoad ? 0u : st.pendingRays - gBottom;
     uint best = groupMax(available > 0u ? (available << 8u) | (255u - self) : 0u);
     if (served == 0u) return;
     uint taker = (served & 0xFFu) - 1u;
 
     if ((served & 0x100u) != 0u) {
         // Hand the taken tree's colour and steps back to its owner.
-        uvec3 low = subgroupShuffle(st.colourLow.xyz, taker);
-        uvec3 high = subgroupShuffle(st.colourHigh.xyz, taker);
+        ColourSum colour = ColourSum(subgroupShuffle(st.colour.low, taker), subgroupShuffle(st.colour.high, taker));
         uint steps = subgroupShuffle(counters.loopSteps, taker);
         uint owner = subgroupShuffle(gOwner, taker);
         if (self == owner) {
             if (gTaken) {  // the owner is tracing a taken tree itself (maybe this one's)
-                addColourSums(gOwnLow, gOwnHigh, low, high);
+                addColourSums(gOwnColour, colour);
                 gOwnSteps += steps;
             } else {
-                addColourSums(st.colourLow, st.colourHigh, low, high);
+                addColourSums(st.colour, colour);
                 counters.loopSteps += steps;
             }
         }
         if (self == taker) {
-            st.colourLow.xyz = gOwnLow.xyz;
-            st.colourHigh.xyz = gOwnHigh.xyz;
+            st.colour = gOwnColour;
             counters.loopSteps = gOwnSteps;
             gTaken = false;
         }
@@ -122,19 +117,17 @@ void shareRays(bool canTake) {
         gBottom += 1u;
     }
     if (self == taker) {
-        gOwnLow.xyz = st.colourLow.xyz;
-        gOwnHigh.xyz = st.colourHigh.xyz;
+        gOwnColour = st.colour;
         gOwnSteps = counters.loopSteps;
-        st.colourLow.xyz = uvec3(0u);
-        st.colourHigh.xyz = uvec3(0u);
+        st.colour = kNoColour;
         counters.loopSteps = 0u;
         gTaken = true;
         gOwner = owner;
         // Its tree's pending rays go where its owner's would have: the same capacity is left.
-        st.control.y = bottom;
+        st.pendingRays = bottom;
         gBottom = bottom;
         gReceives = true;
-        st.control.x = kPhaseTrace;  // beginRay, once the ray is handed over, begins its traversal
+        st.phase = kPhaseTrace;  // beginRay, once the ray is handed over, begins its traversal
     }
 }
 

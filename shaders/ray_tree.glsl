@@ -19,24 +19,24 @@ void beginRay() {
 
 // The next sample's primary ray through `pixel`.
 void startPrimaryRay(uvec2 pixel) {
-    uint pixelIndex = pixel.y * params.image.x + pixel.x;
-    uint k = st.colourLow.w;
-    vec2 position = vec2(pixel) + sampleOffsetInPixel(pixelIndex, k, params.image.z, params.pass.y);
+    uint pixelIndex = pixel.y * imageWidth(params) + pixel.x;
+    uint k = st.samplesDone;
+    vec2 position = vec2(pixel) + sampleOffsetInPixel(pixelIndex, k, samplesPerPixel(params), sampleGridColumns(params));
     vec3 d = cameraRayDirection(position);
     // Off the surface the camera lies on (a normal of 0 where none), on the ray's side, with that
     // side's media (host/render/camera_surface.h: primaryRayOrigin).
-    vec3 n = params.cameraSurface.xyz;
+    vec3 n = cameraSurfaceNormal(params);
     bool behind = ieeeDot(d, n) < 0.0;
-    st.ray.origin = vec4(offsetRayOrigin(params.cameraFrom.xyz, behind ? -n : n), uintBitsToFloat(0u));
-    uint media = behind ? params.pass.z : params.pass.x;
+    st.ray.origin = vec4(offsetRayOrigin(cameraPosition(params), behind ? -n : n), uintBitsToFloat(0u));
+    uint media = behind ? cameraMediaBehindCount(params) : cameraMediaCount(params);
     st.ray.direction = vec4(d, uintBitsToFloat(usesMaterial(kMaterialGlass) ? media : 0u));
     st.ray.weight = vec4(1.0);
     st.ray.media = behind ? params.cameraMediaBehind : params.cameraMedia;  // innermost last
-    st.control.y = 0u;
-    if (params.image.w == 0u) {
+    st.pendingRays = 0u;
+    if (maxDepth(params) == 0u) {
         // max_depth 0: not even the primary ray is traced (render model); the sample is black.
         counters.depthLimitHits += 1u;
-        st.control.x = kPhaseNextRay;
+        st.phase = kPhaseNextRay;
         return;
     }
     counters.primaryRays += 1u;
@@ -44,33 +44,35 @@ void startPrimaryRay(uvec2 pixel) {
 }
 
 void nextRay() {
-    if (kPendingRayCapacity == 0u || st.control.y == gBottom) {
+    if (kPendingRayCapacity == 0u || st.pendingRays == gBottom) {
         if (kRaySharing && gTaken) {
-            st.control.x = kPhaseDone;  // the taken tree is done: ray_sharing.glsl hands it back
+            st.phase = kPhaseDone;  // the taken tree is done: ray_sharing.glsl hands it back
             return;
         }
-        st.control.y = 0u;
+        st.pendingRays = 0u;
         gBottom = 0u;
-        st.colourLow.w += 1u;
-        st.control.x = kPhaseStartSample;
+        st.samplesDone += 1u;
+        st.phase = kPhaseStartSample;
         return;
     }
-    st.control.y -= 1u;
-    loadPendingRay(pendingRayIndex(st.control.y));
+    st.pendingRays -= 1u;
+    loadPendingRay(pendingRayIndex(st.pendingRays));
 }
 
 // The next sample's primary ray, or the end of the pixel.
 void startSample(uvec2 pixel) {
-    if (st.colourLow.w >= params.image.z) st.control.x = kPhaseDone;
+    if (st.samplesDone >= samplesPerPixel(params)) st.phase = kPhaseDone;
     else startPrimaryRay(pixel);  // begins a traversal, or (max_depth 0) goes to kPhaseNextRay
 }
 
 // A pixel's first dispatch.
 void startPixel() {
-    st.colourLow = uvec4(0u);
-    st.colourHigh = uvec4(0u);
-    st.control = uvec4(kPhaseStartSample, 0u, 0u, 0u);
-    st.traversal.w = 0u;
+    st.colour = kNoColour;
+    st.samplesDone = 0u;
+    st.phase = kPhaseStartSample;
+    st.pendingRays = 0u;
+    st.light = 0u;
+    st.steps = 0u;
 }
 
 #endif

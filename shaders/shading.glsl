@@ -23,7 +23,7 @@ vec3 gRoundColour = vec3(0.0);
 // The closest-hit traversal of st.ray is over: record the hit (triangle `tri`, material `m`, both
 // read by main) or take the background.
 void finishTrace(TriangleVertices tri, GpuMaterial m) {
-    uint triangle = st.traversal.z;
+    uint triangle = st.traversal.closest;
     // Beer-Lambert over the segment just travelled (render model: "Media: the IOR stack").
     vec3 mu = mediumAttenuation(st.ray);
     if (triangle == kNoTriangle) {
@@ -34,14 +34,14 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
             counters.absorbedEscapes += 1u;
         }
         gRoundColour += escaped;
-        st.control.x = kPhaseNextRay;
+        st.phase = kPhaseNextRay;
         return;
     }
-    float t = st.traceDirection.w;
+    float t = st.traversal.tMax;
     if (kAbsorption) st.ray.weight.xyz *= beerLambert(mu, t);  // exp(-0 t) is 1 only for finite t: not folded
 
     mat3 normals = loadVertexNormals(triangle);
-    vec2 bary = st.hitUv.zw;
+    vec2 bary = st.traversal.barycentrics;
     float w0 = 1.0 - bary.x - bary.y;
     vec3 edgeCross = windingNormal(tri);
     float crossLength = ieeeLength(edgeCross);
@@ -57,13 +57,16 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
     // The hit point from the barycentrics, not origin + t d: it lies on the triangle to within
     // rounding (Waechter and Binder).
     vec3 position = w0 * tri.v0.xyz + bary.x * tri.v1.xyz + bary.y * tri.v2.xyz;
-    st.hitPosition = vec4(position, t);
-    st.hitNormal = vec4(shadingNormal, tri.v0.w);
-    st.hitGeometricNormal = vec4(geometricNormal, tri.v1.w);
+    st.hit.position = position;
+    st.hit.t = t;
+    st.hit.shadingNormal = shadingNormal;
+    st.hit.material = floatBitsToUint(tri.v0.w);
+    st.hit.geometricNormal = geometricNormal;
+    st.hit.object = floatBitsToUint(tri.v1.w);
     if (kTextures) {  // only texture lookups read them
         vec2 uv0, uv1, uv2;
         loadCornerUvs(triangle, uv0, uv1, uv2);
-        st.hitUv.xy = w0 * uv0 + bary.x * uv1 + bary.y * uv2;
+        st.hit.uv = w0 * uv0 + bary.x * uv1 + bary.y * uv2;
     }
 
     uint model = materialModel(m);
@@ -72,39 +75,39 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
         // touching distance of this hit along the ray, which the traversal collected.
         float farthest = t;
         uvec4 touching = uvec4(0u);
-        if (kTouchingProbe && params.tuning.z != 0.0) {
+        if (kTouchingProbe && touchingProbeOn(params)) {
             counters.touchingProbes += 1u;
-            touching = selectTouching(st.touching, st.probe, t + params.tuning.y, hitObject(), farthest);
+            touching = selectTouching(st.candidates.touchingObjects, st.candidates.touchingT, t + touchingDistance(params), st.hit.object, farthest);
         }
         st.touching = touching;
-        st.probe.x = farthest;
-        st.control.x = kPhaseScatter;
+        st.farthestTouching = farthest;
+        st.phase = kPhaseScatter;
         return;
     }
     // Opaque: both normals face the incoming ray.
     vec3 d = st.ray.direction.xyz;
-    if (ieeeDot(geometricNormal, d) > 0.0) st.hitGeometricNormal.xyz = -geometricNormal;
-    if (ieeeDot(shadingNormal, d) > 0.0) st.hitNormal.xyz = -shadingNormal;
+    if (ieeeDot(geometricNormal, d) > 0.0) st.hit.geometricNormal = -geometricNormal;
+    if (ieeeDot(shadingNormal, d) > 0.0) st.hit.shadingNormal = -shadingNormal;
     if (usesMaterial(kMaterialNormal) && model == kMaterialNormal) {
-        gRoundColour += st.ray.weight.xyz * (0.5 * st.hitNormal.xyz + 0.5);
-        st.control.x = kPhaseNextRay;
+        gRoundColour += st.ray.weight.xyz * (0.5 * st.hit.shadingNormal + 0.5);
+        st.phase = kPhaseNextRay;
         return;
     }
-    st.control.z = 0u;
-    st.control.x = usesMaterial(kMaterialMirror) && model == kMaterialMirror ? kPhaseScatter : kPhaseNextLight;
+    st.light = 0u;
+    st.phase = usesMaterial(kMaterialMirror) && model == kMaterialMirror ? kPhaseScatter : kPhaseNextLight;
 }
 
 vec3 diffuseColour(GpuMaterial m) {
     uint texture = floatBitsToUint(m.diffuse.w);
     return !kTextures || texture == kNoTexture ? m.diffuse.xyz
-                                 : sampleTexture(texture, vec2(st.hitUv.x, 1.0 - st.hitUv.y), true, true);
+                                 : sampleTexture(texture, vec2(st.hit.uv.x, 1.0 - st.hit.uv.y), true, true);
 }
 
 // The visibility-weighted part of light `index` at the hit: m_d max(0, n.l) (+ Phong's
 // m_s max(0, l_r.v)^Ns), times the light's colour and fall-off.
 vec3 directLight(GpuMaterial m, GpuLight light) {
-    vec3 p = st.hitPosition.xyz;
-    vec3 n = st.hitNormal.xyz;
+    vec3 p = st.hit.position;
+    vec3 n = st.hit.shadingNormal;
     vec3 toLight = light.position.xyz - p;
     float distanceSquared = ieeeDot(toLight, toLight);
     vec3 l = toLight / sqrt(distanceSquared);  // as the CPU reference divides
@@ -122,41 +125,41 @@ vec3 directLight(GpuMaterial m, GpuLight light) {
 }
 
 // Lambert and Phong: ambient from every light, then one shadow ray per light whose direct term
-// is not zero; the shadow ray carries that term (st.probe.yzw) to finishShadow.
+// is not zero; the shadow ray carries that term (st.shadowLight) to finishShadow.
 void nextLight(GpuMaterial m) {
-    uint index = st.control.z;
-    if (!kShadowRays || index >= params.counts.x) {
-        st.control.x = usesMaterial(kMaterialPhong) && materialModel(m) == kMaterialPhong ? kPhaseScatter : kPhaseNextRay;
+    uint index = st.light;
+    if (!kShadowRays || index >= lightCount(params)) {
+        st.phase = usesMaterial(kMaterialPhong) && materialModel(m) == kMaterialPhong ? kPhaseScatter : kPhaseNextRay;
         return;
     }
     GpuLight light = loadLight(index);
     gRoundColour += st.ray.weight.xyz * light.colour.xyz * m.ambient.xyz;
     vec3 direct = directLight(m, light);
     if (all(equal(direct, vec3(0.0)))) {
-        st.control.z = index + 1u;
+        st.light = index + 1u;
         return;
     }
-    vec3 origin = offsetRayOrigin(st.hitPosition.xyz, st.hitGeometricNormal.xyz);
+    vec3 origin = offsetRayOrigin(st.hit.position, st.hit.geometricNormal);
     counters.shadowRays += 1u;
-    st.probe.yzw = direct;
+    st.shadowLight = direct;
     beginTraversal(origin, light.position.xyz - origin, 0.0, 1.0);
-    st.control.x = kPhaseShadow;
+    st.phase = kPhaseShadow;
 }
 
 void finishShadow() {
-    if (st.traversal.z == kNoTriangle) gRoundColour += st.ray.weight.xyz * st.probe.yzw;
-    st.control.z += 1u;
-    st.control.x = kPhaseNextLight;
+    if (st.traversal.closest == kNoTriangle) gRoundColour += st.ray.weight.xyz * st.shadowLight;
+    st.light += 1u;
+    st.phase = kPhaseNextLight;
 }
 
 // Whether a child of st.ray at `depth` with path weight `weight` is traced; a limit that stops
 // it is counted.
 bool admitChild(uint depth, vec3 weight) {
-    if (depth >= params.image.w) {
+    if (depth >= maxDepth(params)) {
         counters.depthLimitHits += 1u;
         return false;
     }
-    if (all(lessThan(weight, vec3(params.tuning.x)))) {
+    if (all(lessThan(weight, vec3(minWeight(params))))) {
         counters.weightCuts += 1u;
         return false;
     }
@@ -195,9 +198,9 @@ void scatter(GpuMaterial m) {
     vec3 d = st.ray.direction.xyz;
     vec3 w = st.ray.weight.xyz;
     uint depth = rayDepth(st.ray);
-    vec3 p = st.hitPosition.xyz;
-    vec3 facing = st.hitGeometricNormal.xyz;
-    vec3 n = st.hitNormal.xyz;
+    vec3 p = st.hit.position;
+    vec3 facing = st.hit.geometricNormal;
+    vec3 n = st.hit.shadingNormal;
     float n1 = mediumIor(st.ray);
     float n2 = m.attenuation.w;
     uvec4 media = st.ray.media;
@@ -210,7 +213,7 @@ void scatter(GpuMaterial m) {
         if (!entering) facing = -facing;
         if (!entering) n = -n;
         if (ieeeDot(n, d) >= 0.0) n = facing;  // a shading normal on the wrong side: use the true one
-        if (kTouchingProbe && st.touching.w > 0u) through = st.ray.origin.xyz + st.probe.x * d;
+        if (kTouchingProbe && st.touching.w > 0u) through = st.ray.origin.xyz + st.farthestTouching * d;
     }
     // Index-matched glass: no optical interface; the same ray goes on with the new stack.
     bool matched = glass && n1 == n2;
@@ -222,13 +225,13 @@ void scatter(GpuMaterial m) {
     vec3 transmittedOrigin = offsetRayOrigin(through, -facing);
     // Each child passes the depth and weight limits (or is counted).
     if (usesMaterial(kMaterialGlass) && glass && !matched && cos2t >= 0.0 && admitChild(depth + 1u, w * (1.0 - r))) {
-        if (st.control.y >= kPendingRayCapacity) {
+        if (st.pendingRays >= kPendingRayCapacity) {
             counters.rayStackOverflows += 1u;  // the refraction is dropped, never silently
         } else {
             PendingRay refracted = childRay(transmittedOrigin, refractDirection(d, n, eta, cos2t), w * (1.0 - r), media,
                                             count, depth + 1u);
-            storePendingRay(pendingRayIndex(st.control.y), refracted);
-            st.control.y += 1u;
+            storePendingRay(pendingRayIndex(st.pendingRays), refracted);
+            st.pendingRays += 1u;
             counters.refractionRays += 1u;
         }
     }
@@ -242,7 +245,7 @@ void scatter(GpuMaterial m) {
         st.ray = next;
         beginRay();
     } else {
-        st.control.x = kPhaseNextRay;
+        st.phase = kPhaseNextRay;
     }
 }
 

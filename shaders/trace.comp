@@ -4,7 +4,7 @@
 // lavapipe silently ends a shader's loops after 65,535 iterations of a SIMD group. So every loop
 // iteration of this kernel is one small counted step (one BVH node, one leaf, one triangle, or one
 // round of shading, see main), counted for the group (bvh.glsl's traverse). A dispatch runs at most
-// `params.counts.w` steps per group and unit of pixels. The first dispatch of a tile gives up the
+// `iterationBudget(params)` steps per group and unit of pixels. The first dispatch of a tile gives up the
 // pixels that are not done by then; the resumable build of this kernel (kResumable) restarts them
 // and keeps their state between its dispatches (suspend.glsl), and the host dispatches it until
 // every pixel of the tile is done. Nothing recurses. In the first dispatch, where subgroups are
@@ -44,14 +44,14 @@ void startUnit() {
 // the steps the SIMD group ran (the same in every lane).
 uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
     uvec2 local = tilePixel(unit);
-    uvec2 pixel = params.tile.xy + local;
+    uvec2 pixel = uvec2(tileX(params), tileY(params)) + local;
     // An invocation has a pixel to trace when it is inside the tile and the image and (in the
     // resumable kernel) the pixel is not done yet. One without returns at once, except where the
     // statistics are summed by shuffles (kFullSubgroups, statistics.glsl), which read every lane:
     // it then runs no step and counts nothing.
-    bool hasPixel = local.x < params.tile.z && local.y < params.tile.w && pixel.x < params.image.x && pixel.y < params.image.y;
+    bool hasPixel = local.x < tileWidth(params) && local.y < tileHeight(params) && pixel.x < imageWidth(params) && pixel.y < imageHeight(params);
     if (!hasPixel && !kFullSubgroups) return 0u;
-    uint slot = local.y * params.tile.z + local.x;
+    uint slot = local.y * tileWidth(params) + local.x;
     placePendingRays(slot);
     if (!kResumable) {
         if (hasPixel) startPixel();
@@ -59,7 +59,7 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
         hasPixel = hasPixel && resumeState(slot);
         if (!hasPixel && !kFullSubgroups) return 0u;
     }
-    if (!hasPixel) st.control.x = kPhaseDone;
+    if (!hasPixel) st.phase = kPhaseDone;
 
     // lavapipe runs 8 invocations in lock step and executes both sides of every branch under a
     // mask, so a loop iteration costs its whole body, whatever phase each pixel is in. One
@@ -71,18 +71,18 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
     // the group's count, the same in all its lanes at the top of this loop. The loop is a
     // do-while, as bvh.glsl's are: a while loop would run its body once more with every lane
     // masked off.
-    uint budget = params.counts.w;
+    uint budget = iterationBudget(params);
     uint steps = 0u;
-    if (st.control.x == kPhaseStartSample) startSample(pixel);
+    if (st.phase == kPhaseStartSample) startSample(pixel);
     // The loop runs while some lane of the group has a pixel that is not done; a lane that is
     // done waits in it, as the traversal's lanes do (bvh.glsl), so that every lane reaches the
     // groupMax calls. A lane whose traversal the budget stopped goes no further: the loop ends.
-    bool working = st.control.x != kPhaseDone;
+    bool working = st.phase != kPhaseDone;
     bool busy = working;
     if (groupAny(busy) && steps < budget) do {
         steps += 1u;
         if (working) counters.loopSteps += 1u;
-        uint phase = st.control.x;
+        uint phase = st.phase;
         bool traced = traverse(kShadowRays && phase == kPhaseShadow ? kTraverseAny : kTraverseClosest,
                                phase == kPhaseTrace || phase == kPhaseShadow, steps, budget);
         if (traced && working) {
@@ -91,25 +91,25 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
             // scattering go on from an earlier round.
             TriangleVertices tri = TriangleVertices(vec4(0.0), vec4(0.0), vec4(0.0));
             bool atEarlierHit = phase == kPhaseShadow || phase == kPhaseNextLight || phase == kPhaseScatter;
-            uint material = atEarlierHit ? hitMaterial() : 0u;
-            if (phase == kPhaseTrace && st.traversal.z != kNoTriangle) {
-                tri = loadTriangle(st.traversal.z);
+            uint material = atEarlierHit ? st.hit.material : 0u;
+            if (phase == kPhaseTrace && st.traversal.closest != kNoTriangle) {
+                tri = loadTriangle(st.traversal.closest);
                 material = floatBitsToUint(tri.v0.w);
             }
             GpuMaterial m = loadMaterial(material);
             if (phase == kPhaseShadow) finishShadow();
             else if (phase == kPhaseTrace) finishTrace(tri, m);
-            if (st.control.x == kPhaseNextLight) nextLight(m);  // may begin a shadow traversal
-            if (spawnsRays() && st.control.x == kPhaseScatter) scatter(m);
-            if (st.control.x == kPhaseNextRay) nextRay();  // begins a traversal or ends the sample
+            if (st.phase == kPhaseNextLight) nextLight(m);  // may begin a shadow traversal
+            if (spawnsRays() && st.phase == kPhaseScatter) scatter(m);
+            if (st.phase == kPhaseNextRay) nextRay();  // begins a traversal or ends the sample
             // A sample has ended here: with one sample a pixel (kSingleSample) that was the
             // pixel's only one, and the round needs no camera code (main starts the first sample
             // before the loop): the code of every phase runs in every round on lavapipe.
-            if (st.control.x == kPhaseStartSample) {
-                if (kSingleSample) st.control.x = kPhaseDone;
+            if (st.phase == kPhaseStartSample) {
+                if (kSingleSample) st.phase = kPhaseDone;
                 else startSample(pixel);
             }
-            addColour(st.colourLow, st.colourHigh, gRoundColour);
+            addColour(st.colour, gRoundColour);
             gRoundColour = vec3(0.0);
         }
 #ifndef VITRUM_NO_SUBGROUP_OPERATIONS
@@ -131,7 +131,7 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
             gGives = false;
             gReceives = false;
         }
-        working = st.control.x != kPhaseDone;
+        working = st.phase != kPhaseDone;
         busy = working || gTaken;  // a lane done with a taken tree waits to hand it back
     } while (groupAny(busy) && steps < budget);
 
@@ -139,10 +139,10 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
     // (ray_sharing.glsl); then all the steps a lane ran are restarted steps.
     bool givenUpGroup = kRaySharing && gGroupTook && groupAny(busy);
     if (gTaken) counters.loopSteps += gOwnSteps;
-    st.traversal.w += counters.loopSteps;
-    bool done = st.control.x == kPhaseDone && !givenUpGroup;
+    st.steps += counters.loopSteps;
+    bool done = st.phase == kPhaseDone && !givenUpGroup;
     if (hasPixel) {
-        pixels[slot] = slotPixel(done, colourOfSum(st.colourLow, st.colourHigh) / float(params.image.z));
+        pixels[slot] = slotPixel(done, colourOfSum(st.colour) / float(samplesPerPixel(params)));
         if (kResumable) suspendState(slot, !done);
     }
 
@@ -151,7 +151,7 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
     // short of both the end and the budget was stopped by the driver: count it, never hide it.
     bool counted = kResumable || done;
     TraceCounters c = counters;
-    c.maxPixelLoopSteps = done ? st.traversal.w : 0u;
+    c.maxPixelLoopSteps = done ? st.steps : 0u;
     if (!counted) {
         c = noCounters();
         c.restartedSteps = counters.loopSteps;
@@ -178,7 +178,7 @@ void main() {
     uvec3 totalMaxima = uvec3(0u);
     uint units = tileUnits();
     uint iterations = 0u;  // lavapipe's count for this subgroup, bounded from above
-    // Every unit runs with the same budget (params.counts.w), whichever subgroup takes it and
+    // Every unit runs with the same budget (iterationBudget(params)), whichever subgroup takes it and
     // whatever it traced before: so a unit gives up the same pixels, and counts the same, in
     // every kernel. A subgroup takes another unit only while the driver's limit still holds a
     // whole budget more.
@@ -187,6 +187,6 @@ void main() {
         if (unit >= units) break;
         startUnit();
         iterations += traceUnit(unit, total, totalMaxima) + kUnitIterationsBeyondSteps;
-    } while (kPersistent && iterations + params.counts.w + kUnitIterationsBeyondSteps <= kDriverLoopIterations);
+    } while (kPersistent && iterations + iterationBudget(params) + kUnitIterationsBeyondSteps <= kDriverLoopIterations);
     addStatistics(total, totalMaxima);
 }

@@ -41,7 +41,8 @@ void main() {
     uint i = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x;
     uint ray = i < control.y ? i : 0u;
     params.bvh = uvec4(control.x, 0u, 0u, 0u);
-    params.tuning = vec4(0.0);
+    params.surfaceChecks = uvec4(0u);
+    params.thresholds = vec4(0.0);
     vec4 origin = fetchVec4(rayTexels, 2u * ray, 0u);
     vec4 direction = fetchVec4(rayTexels, 2u * ray, 1u);
     bool tracing = i < control.y && origin.w >= 0.0;
@@ -57,6 +58,6 @@ void main() {
         hits[i] = vec4(-1.0, 0.0, 1.0, float(steps));
         return;
     }
-    bool found = st.traversal.z != kNoTriangle;
-    hits[i] = vec4(found ? st.traceDirection.w : -1.0, uintBitsToFloat(st.traversal.z), over ? 1.0 : 0.0, float(steps));
+    bool found = st.traversal.closest != kNoTriangle;
+    hits[i] = vec4(found ? st.traversal.tMax : -1.0, uintBitsToFloat(st.traversal.closest), over ? 1.0 : 0.0, float(steps));
 }

@@ -19,7 +19,7 @@ struct TileBuffer {
 };
 inline constexpr std::array<TileBuffer, 4> kTileBuffers{{
     {"pixels of one tile", 16},
-    {"trace state of one tile", sizeof(gpu::TraceState)},
+    {"trace state of one tile", gpu::kTraceStateBytes},
     {"pending rays of one tile", gpu::kRayStackSize * sizeof(gpu::PendingRay)},
     {"traversal stacks of one tile", gpu::kTraversalStackSize * sizeof(std::uint32_t)},
 }};

@@ -10,6 +10,7 @@
 #include "gpu/trace_kernel_cache.h"
 #include "gpu/trace_pipeline.h"
 #include "render/packed_scene.h"
+#include "render/render_params.h"
 #include "render/scene_features.h"
 
 namespace vitrum {
@@ -83,7 +84,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     // reads the colours.
     GpuBuffer pixels(device, tilePixels * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                      "pixels of one tile", MemoryUse::Readback);
-    GpuBuffer states(device, tilePixels * sizeof(gpu::TraceState), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+    GpuBuffer states(device, tilePixels * gpu::kTraceStateBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                      "trace state of one tile", MemoryUse::DeviceOnly);
     // The resumable kernel keeps pending rays by slot, the first dispatch by invocation (trace.comp's
     // pendingRayIndex): as many as a tile's whole workgroups have, at most.
@@ -95,7 +96,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
                           "pending rays of one tile", MemoryUse::DeviceOnly);
     GpuBuffer traversalStacks(device, tilePixels * gpu::kTraversalStackSize * sizeof(std::uint32_t),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "traversal stacks of one tile", MemoryUse::DeviceOnly);
-    stats.stateBytesPerPixel = sizeof(gpu::TraceState) + kernel.pendingRayCapacity * sizeof(gpu::PendingRay) +
+    stats.stateBytesPerPixel = gpu::kTraceStateBytes + kernel.pendingRayCapacity * sizeof(gpu::PendingRay) +
                                gpu::kTraversalStackSize * sizeof(std::uint32_t);
     GpuBuffer counters(device, gpu::kDispatchCounterCount * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                        "statistics and work cursor");
@@ -119,29 +120,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     firstPass.pipeline.bind(bound);
     stats.addPhase("pipeline", secondsSince(start));
 
-    gpu::RenderParams p = makeRenderParams(scene, packed.bvh.rootEntry);
-    p.counts.w = options.iterationBudget;
-    // Surfaces of different glass objects closer than this touch (the CPU reference's distance too).
-    p.tuning.y = float(stats.features.touchingDistance);
-    // Whether to run the touching probe at glass hits. The general kernel asks only whether the
-    // scene has two glass objects; the specialized one has the analysis's answer compiled in
-    // (boxes that overlap), so it skips probes that could find nothing.
-    p.tuning.z = stats.features.glassObjects >= 2 ? 1.0f : 0.0f;
-    // Whether closest-hit traversals look for an opaque surface within that distance beyond a
-    // glass hit (glass resting on a table): the analysis's answer, in both kernels.
-    p.tuning.w = stats.features.opaqueContactPossible ? 1.0f : 0.0f;
-    // Whether they also look for the opaque surface the ray leaves through within that distance
-    // of the nearest hit (a box standing on another): the analysis's answer, in both kernels.
-    p.pass.w = stats.features.coincidentOpaquePossible ? 1u : 0u;
-    // Every primary ray's medium stack: the media around the camera, or where the camera lies on a
-    // surface, those on the ray's side of it (render/camera_surface.h).
-    const std::vector<std::uint32_t>& cameraMedia = stats.features.cameraMedia;
-    p.pass.x = std::uint32_t(cameraMedia.size());
-    for (std::size_t i = 0; i < cameraMedia.size(); ++i) p.cameraMedia[int(i)] = cameraMedia[i];
-    const std::vector<std::uint32_t>& behind = stats.features.cameraMediaBehind;
-    p.pass.z = std::uint32_t(behind.size());
-    for (std::size_t i = 0; i < behind.size(); ++i) p.cameraMediaBehind[int(i)] = behind[i];
-    p.cameraSurface = glm::vec4(stats.features.cameraSurface.normal, 0.0f);
+    gpu::RenderParams p = makeRenderParams(scene, stats.features, packed.bvh.rootEntry, options.iterationBudget);
     const std::uint32_t tilesX = (width + tileWidth - 1) / tileWidth;
     const std::uint32_t tilesY = (height + tileHeight - 1) / tileHeight;
     auto* counterValues = counters.as<std::uint32_t>();
@@ -151,7 +130,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     auto compile = [&](const TraceKernelCache::Kernel& k) {
         if (k.compiled) return 0.0;
         const auto compileStart = Clock::now();
-        p.tile = glm::uvec4(0u);
+        gpu::setTile(p, glm::uvec4(0u));
         std::memcpy(params.mapped(), &p, sizeof(p));
         device.submitAndWait([&](VkCommandBuffer commands) { k.pipeline.record(commands, 1, 1); });
         k.compiled = true;
@@ -165,8 +144,8 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     // A tile at the image's right or bottom edge may be cut off: only the workgroups over its part
     // inside the image are dispatched.
     auto tileGroups = [&] {
-        return glm::uvec2((std::min(p.tile.z, width - p.tile.x) + kTraceGroupSize - 1) / kTraceGroupSize,
-                          (std::min(p.tile.w, height - p.tile.y) + kTraceGroupSize - 1) / kTraceGroupSize);
+        return glm::uvec2((std::min(gpu::tileWidth(p), width - gpu::tileX(p)) + kTraceGroupSize - 1) / kTraceGroupSize,
+                          (std::min(gpu::tileHeight(p), height - gpu::tileY(p)) + kTraceGroupSize - 1) / kTraceGroupSize);
     };
     // One dispatch of `groups` workgroups; returns the pixels it left unfinished.
     auto run = [&](const ComputePipeline& pipeline, glm::uvec2 groups) {
@@ -220,7 +199,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     for (std::uint32_t ty = 0; ty < tilesY; ++ty) {
         for (std::uint32_t tx = 0; tx < tilesX; ++tx) {
             const glm::uvec4 tile(tx * tileWidth, ty * tileHeight, tileWidth, tileHeight);
-            p.tile = tile;
+            gpu::setTile(p, tile);
             const std::uint32_t givenUp =
                 persistent ? dispatchPersistent(firstPass.pipeline) : dispatch(firstPass.pipeline);
             stats.restartedPixels += givenUp;
@@ -231,7 +210,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
                 compile(k);
                 resumable = &k.pipeline;
                 resumableSeconds = secondsSince(buildStart);
-                p.tile = tile;
+                gpu::setTile(p, tile);
             }
             for (std::uint32_t unfinished = givenUp; unfinished > 0;) unfinished = dispatch(*resumable);
             readTile(tile);

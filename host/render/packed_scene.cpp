@@ -1,7 +1,5 @@
 #include "render/packed_scene.h"
 
-#include "cpu/ray_offset.h"
-
 #include <bit>
 #include <algorithm>
 #include <cmath>
@@ -65,38 +63,6 @@ PackedScene packScene(const Scene& scene, const Bvh& bvh) {
     for (std::uint32_t& slot : packed.objectMaterials)
         if (slot == kUnset) slot = 0;
     return packed;
-}
-
-std::uint32_t sampleGridColumns(std::uint32_t n) {
-    std::uint32_t columns = 1;
-    for (std::uint32_t c = 1; c * c <= n; ++c)
-        if (n % c == 0) columns = c;
-    return columns;
-}
-
-gpu::RenderParams makeRenderParams(const Scene& scene, std::uint32_t rootEntry) {
-    const Camera& camera = scene.camera;
-    glm::vec3 z = glm::normalize(camera.from - camera.at);
-    glm::vec3 x = glm::normalize(glm::cross(camera.up, z));
-    glm::vec3 y = glm::cross(z, x);
-    float focal = float(camera.height) / (2.0f * std::tan(glm::radians(camera.fovY) / 2.0f));
-    const RenderSettings& s = scene.settings;
-    gpu::RenderParams p{};
-    p.cameraFrom = glm::vec4(camera.from, focal);
-    p.cameraX = glm::vec4(x, 0.0f);
-    p.cameraY = glm::vec4(y, 0.0f);
-    p.cameraZ = glm::vec4(z, 0.0f);
-    p.background = glm::vec4(scene.background.colour, scene.airIor);
-    p.image = glm::uvec4(camera.width, camera.height, s.samplesPerPixel, s.maxDepth);
-    p.counts = glm::uvec4(scene.lights.size(), std::uint32_t(s.fresnel), scene.textures.size(), 0);
-    p.pass = glm::uvec4(0, sampleGridColumns(s.samplesPerPixel), 0, 0);
-    p.tuning = glm::vec4(s.minWeight, 0.0f, 0.0f, 0.0f);
-    p.environment = glm::uvec4(std::uint32_t(scene.background.kind), std::uint32_t(s.filter),
-                               std::uint32_t(std::max(scene.background.map, 0)), 0);
-    const RayOffsetScale offsets = rayOffsetScale(scene.triangles);  // Waechter and Binder's, scaled to the scene
-    p.offsets = glm::vec4(offsets.origin, offsets.absolute, 0.0f, 0.0f);
-    p.bvh = glm::uvec4(rootEntry, 0, 0, 0);
-    return p;
 }
 
 }  // namespace vitrum

@@ -6,6 +6,7 @@
 #define VITRUM_GPU_TYPES_H
 
 #include "language.h"
+#include "render_params.h"
 
 VITRUM_GPU_BEGIN
 
@@ -110,45 +111,11 @@ VITRUM_CONST uint kFresnelSchlickExp2 = 2u;
 // (shaders/bindings.glsl): a struct is this many consecutive texels (gpu_layout.h checks them
 // against the struct sizes). An object's medium is one texel: its material's `attenuation` (Tf, Ni).
 VITRUM_CONST uint kTraversalNodeTexels = 4u;
-VITRUM_CONST uint kRenderParamsTexels = 16u;
-VITRUM_CONST uint kTraceStateTexels = 16u;  // a storage buffer of uvec4s (shaders/suspend.glsl)
+VITRUM_CONST uint kTraceStateTexels = 16u;  // a pixel's saved state (shaders/suspend.glsl)
 VITRUM_CONST uint kTriangleVerticesTexels = 3u;
 VITRUM_CONST uint kTriangleShadingTexels = 5u;
 VITRUM_CONST uint kGpuMaterialTexels = 4u;
 VITRUM_CONST uint kGpuLightTexels = 2u;
-
-// ---- Per-render parameters (a texel buffer of kRenderParamsTexels, see bindings.glsl) -----------
-// The pinhole camera of docs/render-model.md: a sample at image position (sx, sy) has direction
-// normalize((sx - width/2) * cameraX + (height/2 - sy) * cameraY - focalLength * cameraZ).
-struct RenderParams {
-    vec4 cameraFrom;   // .w = focal length f = height / (2 tan(fov_y / 2)), in pixels
-    vec4 cameraX;      // .xyz = x_c
-    vec4 cameraY;      // .xyz = y_c
-    vec4 cameraZ;      // .xyz = z_c (points from the target back to the camera)
-    vec4 background;   // .xyz = constant background colour; .w = air IOR
-    uvec4 image;       // width, height, samples per pixel, max depth
-    uvec4 counts;      // light count, fresnel model, texture count, iteration budget per SIMD group and dispatch
-    uvec4 tile;        // tile origin x, tile origin y, tile width, tile height
-    uvec4 pass;        // x = media around the camera (cameraMedia); y = columns of the stratified
-                       // sample grid (rows = spp / columns); z = media of cameraMediaBehind; w = 1
-                       // when opaque surfaces of two objects may coincide
-                       // (SceneFeatures::coincidentOpaquePossible), else 0
-    vec4 tuning;       // x = min weight, y = distance within which surfaces touch (1e-5 x scene
-                       // diagonal), z = 1 when the scene has two or more glass objects (so
-                       // surfaces of different objects can touch), else 0; w = 1 when glass may
-                       // rest on an opaque surface (SceneFeatures::opaqueContactPossible), else 0
-    uvec4 environment; // x = background kind (kBackground*), y = filter (kFilter*), z = texture of
-                       // the spherical map or of the cube's +x face (then -x, +y, -y, +z, -z)
-    vec4 offsets;      // ray-origin offsets (Waechter and Binder) scaled to the scene: x = radius of
-                       // the region around the origin where offsets are absolute, y = that offset
-    uvec4 bvh;         // x = the root's entry (see TraversalNode): node 0, or the one leaf of a
-                       // scene of at most kMaxLeafTriangles triangles
-    uvec4 cameraMedia; // the objects whose media the camera is inside, innermost last: every
-                       // primary ray's medium stack (host/render/camera_medium.h); pass.x of them
-    vec4 cameraSurface;       // .xyz = unit normal of the surface the camera lies on, 0 if none:
-                              // primary rays start off it on their side (host/render/camera_surface.h)
-    uvec4 cameraMediaBehind;  // the media of primary rays that go against that normal; pass.z of them
-};
 
 // Numbered like vitrum::BackgroundKind and vitrum::TextureFilter.
 VITRUM_CONST uint kBackgroundConstant = 0u;
@@ -172,36 +139,14 @@ struct PendingRay {
     uvec4 media;     // object indices of the media the ray is inside, innermost last
 };
 
-// The pending rays of a pixel are not part of its TraceState: they live in their own buffer,
-// `capacity` entries a pixel (the specialized kernel's kPendingRayCapacity, sized to what the
-// scene can reach), read and written in place, so suspending a pixel never copies them. Nor is
-// its BVH traversal stack (kTraversalStackSize uints a pixel, in a buffer of its own): the kernel
-// keeps it in private memory and saves only the entries in use, only when a pixel is suspended in
-// the middle of a traversal. On lavapipe every storage-buffer access is a loop over the 8 lanes.
-struct TraceState {
-    PendingRay ray;                      // the ray being traced (or shaded)
-    vec4 traceOrigin;                    // the ray of the current traversal; .w = tMin
-    vec4 traceDirection;                 // .w = closest t so far (the traversal's tMax)
-    vec4 hitPosition;                    // .w = hit t of `ray`. During a closest-hit traversal
-                                         // that looks for glass on opaque surfaces: the nearest
-                                         // opaque hit's t, triangle (bits) and barycentrics
-    vec4 hitNormal;                      // shading normal, .w = material (uint bits). During such
-                                         // a traversal: .x = 1 when the nearest hit is glass
-    vec4 hitGeometricNormal;             // .w = object (uint bits)
-    vec4 hitUv;                          // .xy = texture coordinates, .zw = barycentrics
-    uvec4 colourLow;                     // the pixel's colour so far, summed over its samples in
-                                         // fixed point (shaders/colour_sum.glsl): .xyz = low
-                                         // words; .w = samples done
-    uvec4 colourHigh;                    // .xyz = high words
-    uvec4 control;                       // phase, pending rays, current light, traversal stack entries
-    uvec4 traversal;                     // leaf cursor, leaf end, closest triangle, pixel's steps
-    uvec4 touching;                      // other objects' glass surfaces at the hit: object | entering
-                                         // << 31, up to 3; .w = how many. During a closest-hit
-                                         // traversal: touching.glsl's candidate objects
-    vec4 probe;                          // .x = farthest touching surface's t; .yzw = the direct
-                                         // light a pending shadow ray adds if unoccluded. During a
-                                         // closest-hit traversal: the candidates' t
-};
+// A pixel's state (shaders/trace_state.glsl), saved between the resumable kernel's dispatches
+// as kTraceStateTexels texels (shaders/suspend.glsl). Its pending rays are not part of it: they
+// live in their own buffer, `capacity` entries a pixel (the specialized kernel's
+// kPendingRayCapacity, sized to what the scene can reach), read and written in place, so
+// suspending a pixel never copies them. Nor is its BVH traversal stack (kTraversalStackSize uints
+// a pixel, in a buffer of its own): the kernel keeps it in private memory and saves only the
+// entries in use, only when a pixel is suspended in the middle of a traversal.
+VITRUM_CONST uint kTraceStateBytes = 16u * kTraceStateTexels;
 
 // ---- Sampling -------------------------------------------------------------------------------
 // The integer hash both backends use for jitter, so that their samples are bit-identical:

@@ -19,6 +19,7 @@
 #include "cpu/optics.h"
 #include "cpu/ray_offset.h"
 #include "render/packed_scene.h"
+#include "render/render_params.h"
 #include "scene/scene.h"
 #include "shared/gpu_types.h"
 
@@ -292,9 +293,9 @@ TEST(HardCaseSelfIntersection, OffsetConstantsFollowTheSceneExtent) {
     for (Triangle& t : scene.triangles)
         for (glm::vec3& p : t.position) p *= 1e-3f;
     scene.materials.push_back(Material{});
-    const gpu::RenderParams params = makeRenderParams(scene, gpu::kLeafEntryFlag);
-    EXPECT_EQ(params.offsets.x, rayOffsetScale(scene.triangles).origin);
-    EXPECT_EQ(params.offsets.y, rayOffsetScale(scene.triangles).absolute);
+    const gpu::RenderParams params = makeRenderParams(scene, analyseScene(scene), gpu::kLeafEntryFlag, 1000);
+    EXPECT_EQ(gpu::offsetRegion(params), rayOffsetScale(scene.triangles).origin);
+    EXPECT_EQ(gpu::offsetDistance(params), rayOffsetScale(scene.triangles).absolute);
 }
 
 // ---- Degenerate triangles ------------------------------------------------------------------

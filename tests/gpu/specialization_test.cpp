@@ -69,9 +69,9 @@ TEST(Specialization, SeparateGlassSpheresRunNoTouchingProbeInTheSpecializedKerne
     EXPECT_EQ(specialized.kernel->pendingRayCapacity, 9u);
     EXPECT_EQ(specialized.maxMediumDepth, 1u);
     EXPECT_EQ(specialized.mediumStackOverflows, 0u);
-    EXPECT_EQ(specialized.stateBytesPerPixel, sizeof(gpu::TraceState) + 9 * sizeof(gpu::PendingRay) +
+    EXPECT_EQ(specialized.stateBytesPerPixel, gpu::kTraceStateBytes + 9 * sizeof(gpu::PendingRay) +
                                              gpu::kTraversalStackSize * sizeof(std::uint32_t));
-    EXPECT_EQ(general.stateBytesPerPixel, sizeof(gpu::TraceState) + 16 * sizeof(gpu::PendingRay) +
+    EXPECT_EQ(general.stateBytesPerPixel, gpu::kTraceStateBytes + 16 * sizeof(gpu::PendingRay) +
                                              gpu::kTraversalStackSize * sizeof(std::uint32_t));
 }
 
