@@ -1,6 +1,7 @@
 #include "render/packed_scene.h"
 
 #include "cpu/ray_offset.h"
+#include "render/sampling.h"
 
 #include <bit>
 #include <algorithm>
@@ -67,13 +68,6 @@ PackedScene packScene(const Scene& scene, const Bvh& bvh) {
     return packed;
 }
 
-std::uint32_t sampleGridColumns(std::uint32_t n) {
-    std::uint32_t columns = 1;
-    for (std::uint32_t c = 1; c * c <= n; ++c)
-        if (n % c == 0) columns = c;
-    return columns;
-}
-
 gpu::RenderParams makeRenderParams(const Scene& scene, std::uint32_t rootEntry) {
     const Camera& camera = scene.camera;
     glm::vec3 z = glm::normalize(camera.from - camera.at);
@@ -89,7 +83,7 @@ gpu::RenderParams makeRenderParams(const Scene& scene, std::uint32_t rootEntry) 
     p.background = glm::vec4(scene.background.colour, scene.airIor);
     p.image = glm::uvec4(camera.width, camera.height, s.samplesPerPixel, s.maxDepth);
     p.counts = glm::uvec4(scene.lights.size(), std::uint32_t(s.fresnel), scene.textures.size(), 0);
-    p.pass = glm::uvec4(0, sampleGridColumns(s.samplesPerPixel), 0, 0);
+    p.pass = glm::uvec4(0, stratifiedColumns(s.samplesPerPixel), 0, 0);
     p.tuning = glm::vec4(s.minWeight, 0.0f, 0.0f, 0.0f);
     p.environment = glm::uvec4(std::uint32_t(scene.background.kind), std::uint32_t(s.filter),
                                std::uint32_t(std::max(scene.background.map, 0)), 0);

@@ -31,8 +31,4 @@ PackedScene packScene(const Scene& scene, const Bvh& bvh);
 // kernel reads them; the host fills in tile and pass.
 gpu::RenderParams makeRenderParams(const Scene& scene, std::uint32_t rootEntry);
 
-// Columns of the stratified sample grid for n samples: the largest divisor of n that is at most
-// sqrt(n) (so 16 -> 4 x 4, 8 -> 2 x 4, 7 -> 1 x 7).
-std::uint32_t sampleGridColumns(std::uint32_t n);
-
 }  // namespace vitrum
