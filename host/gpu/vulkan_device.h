@@ -64,9 +64,7 @@ public:
     static std::vector<DeviceDescription> listDevices();
 
     VkDevice device() const { return device_; }
-    VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
     VkQueue queue() const { return queue_; }
-    std::uint32_t queueFamily() const { return queueFamily_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     std::string name() const { return properties_.deviceName; }
     // What listDevices says of this device.
@@ -76,7 +74,6 @@ public:
     const SubgroupSupport& subgroups() const { return description_.subgroups; }
     bool hasSubgroupArithmeticAndBallot() const { return subgroups().arithmeticAndBallot; }
     bool hasFullSubgroups() const { return subgroups().fullSubgroups; }
-    std::uint32_t maxSubgroupSize() const { return subgroups().maxSize; }
     // DeviceDescription::preservesInfNan.
     bool preservesInfNan() const { return description_.preservesInfNan; }
     // Which trace kernel this device gets, and why (gpu/subgroup_self_check.h): "fast: ..." where
