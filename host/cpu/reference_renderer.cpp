@@ -1,7 +1,7 @@
-// The CPU reference renderer: docs/render-model.md as a recursive Whitted-style ray tree, one
-// function per material model, in float or double. The decisions the render model leaves open
-// are made the way shaders/trace.comp makes them, so that the two backends can be compared
-// pixel by pixel:
+// The CPU reference renderer: ../shared/docs/render-model.md as a recursive Whitted-style ray
+// tree, one function per material model, in float or double. The decisions the render model
+// leaves open are made the way shaders/trace.comp makes them, so that the two backends can be
+// compared pixel by pixel:
 //   - the hit point is interpolated from the barycentrics (Waechter and Binder recommend it over
 //     o + t d: its error scales with the triangle, not with the ray's length);
 //   - new rays start at offsetRayOrigin(p, n_g) on the side they go to, with tMin = 0, with the

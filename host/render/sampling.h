@@ -1,7 +1,7 @@
-// Where the samples of a pixel go (docs/render-model.md, "Geometry and camera"): the pixel centre
-// for one sample, otherwise stratified jitter on a grid. Written so that shaders/camera.glsl
-// (sampleOffsetInPixel) gives the same positions bit for bit: the same integer hash
-// (gpu::pcgHash), the same float operations in the same order.
+// Where the samples of a pixel go (../shared/docs/render-model.md, "Geometry and camera"): the
+// pixel centre for one sample, otherwise stratified jitter on a grid. Written so that
+// shaders/camera.glsl (sampleOffsetInPixel) gives the same positions bit for bit: the same integer
+// hash (gpu::pcgHash), the same float operations in the same order.
 #pragma once
 
 #include <cstdint>
