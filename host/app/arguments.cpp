@@ -11,10 +11,6 @@ Arguments::Arguments(int argc, char** argv, int first) {
     for (int i = first; i < argc; ++i) args_.emplace_back(argv[i]);
 }
 
-bool Arguments::nextIsFlag() const {
-    return !empty() && (args_[position_].rfind("--", 0) == 0 || args_[position_] == "-o");
-}
-
 std::string Arguments::next() {
     if (empty()) throw InputError("missing argument");
     return args_[position_++];

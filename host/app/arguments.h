@@ -16,8 +16,6 @@ public:
     Arguments(int argc, char** argv, int first);
 
     bool empty() const { return position_ >= args_.size(); }
-    // The next argument is a flag (starts with "--" or is "-o").
-    bool nextIsFlag() const;
     std::string next();  // throws InputError when there is none
     std::string valueOf(const std::string& flag);
 

@@ -1,7 +1,7 @@
-// The CPU reference renderer: docs/render-model.md as a recursive Whitted-style ray tree, one
-// function per material model, in float or double. The decisions the render model leaves open
-// are made the way shaders/trace.comp makes them, so that the two backends can be compared
-// pixel by pixel:
+// The CPU reference renderer: ../shared/docs/render-model.md as a recursive Whitted-style ray
+// tree, one function per material model, in float or double. The decisions the render model
+// leaves open are made the way shaders/trace.comp makes them, so that the two backends can be
+// compared pixel by pixel:
 //   - the hit point is interpolated from the barycentrics (Waechter and Binder recommend it over
 //     o + t d: its error scales with the triangle, not with the ray's length);
 //   - new rays start at offsetRayOrigin(p, n_g) on the side they go to, with tMin = 0, with the
@@ -25,6 +25,7 @@
 #include "bvh/bvh_traversal.h"
 #include "cpu/optics.h"
 #include "cpu/ray_offset.h"
+#include "render/medium_materials.h"
 #include "render/sampling.h"
 #include "render/scene_features.h"
 
@@ -52,22 +53,6 @@ struct TraceCounters : TraceCounts {
         stats += counts;
     }
 };
-
-// The material whose medium an object encloses: its first glass triangle's material, or its
-// first triangle's when it has no glass (the same choice as render/packed_scene.cpp).
-std::vector<std::uint32_t> objectMediumMaterials(const Scene& scene) {
-    constexpr std::uint32_t kUnset = std::numeric_limits<std::uint32_t>::max();
-    std::vector<std::uint32_t> result(scene.objectNames.size(), kUnset);
-    for (const Triangle& t : scene.triangles) {
-        if (t.object >= result.size()) result.resize(t.object + 1, kUnset);
-        std::uint32_t& slot = result[t.object];
-        const bool glass = scene.materials[t.material].model == MaterialModel::Glass;
-        if (slot == kUnset || (glass && scene.materials[slot].model != MaterialModel::Glass)) slot = t.material;
-    }
-    for (std::uint32_t& slot : result)
-        if (slot == kUnset) slot = 0;
-    return result;
-}
 
 template <class Real>
 class ReferenceTracer {

@@ -1,6 +1,6 @@
-// The CPU reference renderer: docs/render-model.md written as plainly as possible. Recursive,
-// multithreaded over rows, in float (to hold the GPU to it) or double (ground truth). Built with
-// -ffp-contract=off so that float results are not changed by FMA contraction.
+// The CPU reference renderer: ../shared/docs/render-model.md written as plainly as possible.
+// Recursive, multithreaded over rows, in float (to hold the GPU to it) or double (ground truth).
+// Built with -ffp-contract=off so that float results are not changed by FMA contraction.
 #pragma once
 
 #include <functional>

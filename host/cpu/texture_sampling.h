@@ -1,6 +1,7 @@
 // Reading textures and environment maps on the CPU: texel centres at (i + 0.5) / size, bilinear
-// or nearest, wrap or clamp per axis; the spherical and cube mappings of docs/render-model.md
-// ("Background"). shaders/background.glsl and shaders/texture.glsl do the same steps in float.
+// or nearest, wrap or clamp per axis; the spherical and cube mappings of
+// ../shared/docs/render-model.md ("Background"). shaders/background.glsl and shaders/texture.glsl
+// do the same steps in float.
 #pragma once
 
 #include <cmath>

@@ -344,30 +344,31 @@ void VulkanDevice::release() {
 
 std::uint32_t VulkanDevice::validationMessages() const { return gValidationMessages.load(); }
 
-VkCommandBuffer VulkanDevice::beginCommands() {
+VulkanDevice::PooledCommands::PooledCommands(VulkanDevice& device) : device_(device) {
     VkCommandBufferAllocateInfo info{
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
-        .commandPool = commandPool_.get(),
+        .commandPool = device_.commandPool_.get(),
         .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
         .commandBufferCount = 1,
     };
-    VkCommandBuffer commands = VK_NULL_HANDLE;
-    VK_CHECK(vkAllocateCommandBuffers(device_, &info, &commands));
+    VK_CHECK(vkAllocateCommandBuffers(device_.device_, &info, &commands_));
+    ++device_.commandBuffersInUse_;
+}
+
+VulkanDevice::PooledCommands::~PooledCommands() {
+    vkFreeCommandBuffers(device_.device_, device_.commandPool_.get(), 1, &commands_);
+    --device_.commandBuffersInUse_;
+}
+
+void VulkanDevice::beginCommands(VkCommandBuffer commands) {
     VkCommandBufferBeginInfo begin{
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
         .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
     };
     VK_CHECK(vkBeginCommandBuffer(commands, &begin));
-    return commands;
 }
 
 void VulkanDevice::endSubmitWait(VkCommandBuffer commands) {
-    struct FreeOnExit {
-        VkDevice device;
-        VkCommandPool pool;
-        VkCommandBuffer commands;
-        ~FreeOnExit() { vkFreeCommandBuffers(device, pool, 1, &commands); }
-    } freeOnExit{device_, commandPool_.get(), commands};
     VK_CHECK(vkEndCommandBuffer(commands));
     VkSubmitInfo submit{
         .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,

@@ -64,9 +64,7 @@ public:
     static std::vector<DeviceDescription> listDevices();
 
     VkDevice device() const { return device_; }
-    VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
     VkQueue queue() const { return queue_; }
-    std::uint32_t queueFamily() const { return queueFamily_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     std::string name() const { return properties_.deviceName; }
     // What listDevices says of this device.
@@ -76,7 +74,6 @@ public:
     const SubgroupSupport& subgroups() const { return description_.subgroups; }
     bool hasSubgroupArithmeticAndBallot() const { return subgroups().arithmeticAndBallot; }
     bool hasFullSubgroups() const { return subgroups().fullSubgroups; }
-    std::uint32_t maxSubgroupSize() const { return subgroups().maxSize; }
     // DeviceDescription::preservesInfNan.
     bool preservesInfNan() const { return description_.preservesInfNan; }
     // Which trace kernel this device gets, and why (gpu/subgroup_self_check.h): "fast: ..." where
@@ -87,14 +84,32 @@ public:
 
     const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
 
-    // Records commands with `record`, submits them and waits for them to finish.
+    // Records commands with `record`, submits them and waits for them to finish. The command
+    // buffer goes back to the pool on every way out, a `record` that throws included.
     template <class Record>
     void submitAndWait(Record&& record);
+    // Command buffers taken from the pool and not yet freed: 0 between submitAndWait calls
+    // (the pool would grow with each one left behind, unseen by the driver and the validation layer).
+    std::uint32_t commandBuffersInUse() const { return commandBuffersInUse_; }
 
 private:
+    // A command buffer of the device's pool, freed when it goes out of scope.
+    class PooledCommands {
+    public:
+        explicit PooledCommands(VulkanDevice& device);
+        ~PooledCommands();
+        PooledCommands(const PooledCommands&) = delete;
+        PooledCommands& operator=(const PooledCommands&) = delete;
+        VkCommandBuffer get() const { return commands_; }
+
+    private:
+        VulkanDevice& device_;
+        VkCommandBuffer commands_ = VK_NULL_HANDLE;
+    };
+
     void release();
     void chooseKernelPath();
-    VkCommandBuffer beginCommands();
+    void beginCommands(VkCommandBuffer commands);
     void endSubmitWait(VkCommandBuffer commands);
 
     VkInstance instance_ = VK_NULL_HANDLE;
@@ -109,13 +124,15 @@ private:
     std::uint32_t queueFamily_ = 0;
     UniqueCommandPool commandPool_;
     UniqueFence fence_;
+    std::uint32_t commandBuffersInUse_ = 0;
 };
 
 template <class Record>
 void VulkanDevice::submitAndWait(Record&& record) {
-    VkCommandBuffer commands = beginCommands();
-    record(commands);
-    endSubmitWait(commands);
+    const PooledCommands commands(*this);
+    beginCommands(commands.get());
+    record(commands.get());
+    endSubmitWait(commands.get());
 }
 
 }  // namespace vitrum

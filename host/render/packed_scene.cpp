@@ -1,5 +1,7 @@
 #include "render/packed_scene.h"
 
+#include "render/medium_materials.h"
+
 #include <bit>
 #include <algorithm>
 #include <cmath>
@@ -52,16 +54,7 @@ PackedScene packScene(const Scene& scene, const Bvh& bvh) {
         packed.textures.push_back({glm::uvec4(packed.texels.size() / 3, texture.width, texture.height, 0)});
         for (const glm::vec3& texel : texture.texels) packed.texels.insert(packed.texels.end(), {texel.x, texel.y, texel.z});
     }
-    constexpr std::uint32_t kUnset = 0xFFFFFFFFu;
-    packed.objectMaterials.assign(scene.objectNames.size(), kUnset);
-    for (const Triangle& t : scene.triangles) {
-        if (t.object >= packed.objectMaterials.size()) packed.objectMaterials.resize(t.object + 1, kUnset);
-        std::uint32_t& slot = packed.objectMaterials[t.object];
-        bool glass = scene.materials[t.material].model == MaterialModel::Glass;
-        if (slot == kUnset || (glass && scene.materials[slot].model != MaterialModel::Glass)) slot = t.material;
-    }
-    for (std::uint32_t& slot : packed.objectMaterials)
-        if (slot == kUnset) slot = 0;
+    packed.objectMaterials = objectMediumMaterials(scene);
     return packed;
 }
 

@@ -20,8 +20,7 @@ struct PackedScene {
     std::vector<gpu::GpuLight> lights;
     std::vector<gpu::TextureInfo> textures;
     std::vector<float> texels;  // RGB, 3 floats a texel
-    // The material of each object's medium: its first glass triangle's material (or its first
-    // triangle's when it has no glass).
+    // The material of each object's medium (objectMediumMaterials, render/medium_materials.h).
     std::vector<std::uint32_t> objectMaterials;
 };
 

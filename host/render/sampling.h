@@ -1,7 +1,7 @@
-// Where the samples of a pixel go (docs/render-model.md, "Geometry and camera"): the pixel centre
-// for one sample, otherwise stratified jitter on a grid. Written so that shaders/camera.glsl
-// (sampleOffsetInPixel) gives the same positions bit for bit: the same integer hash
-// (gpu::pcgHash), the same float operations in the same order.
+// Where the samples of a pixel go (../shared/docs/render-model.md, "Geometry and camera"): the
+// pixel centre for one sample, otherwise stratified jitter on a grid. Written so that
+// shaders/camera.glsl (sampleOffsetInPixel) gives the same positions bit for bit: the same integer
+// hash (gpu::pcgHash), the same float operations in the same order.
 #pragma once
 
 #include <cstdint>
@@ -13,7 +13,9 @@
 namespace vitrum {
 
 // Columns of the stratified grid for n samples: the largest divisor of n that is at most
-// sqrt(n), so the grid is as square as n allows (16 -> 4 x 4, 8 -> 2 x 4, 7 -> 1 x 7).
+// sqrt(n), so the grid is as square as n allows (16 -> 4 x 4, 8 -> 2 x 4, 7 -> 1 x 7). Both
+// backends use it (the GPU gets it in RenderParams::pass.y). c * c is taken in 64 bits: in 32 it
+// wraps at c = 65536, so from n = 65535^2 on the loop would run on until c wraps to 0.
 constexpr std::uint32_t stratifiedColumns(std::uint32_t n) {
     std::uint32_t columns = 1;
     for (std::uint32_t c = 1; std::uint64_t(c) * c <= n; ++c)

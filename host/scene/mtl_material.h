@@ -1,6 +1,7 @@
-// From an MTL record to a Material of the render model (docs/render-model.md, "Materials"):
-// the course's `shader N` picks the model, `illum` decides when there is no usable shader line,
-// Ka Kd Ks are decoded from sRGB, Tf is kept linear. The table is in docs/scene-format.md.
+// From an MTL record to a Material of the render model (../shared/docs/render-model.md,
+// "Materials"): the course's `shader N` picks the model, `illum` decides when there is no usable
+// shader line, Ka Kd Ks are decoded from sRGB, Tf is kept linear. The table is in
+// docs/scene-format.md.
 #pragma once
 
 #include <filesystem>

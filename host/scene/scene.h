@@ -1,6 +1,6 @@
 // The scene as every backend sees it: geometry in world space, materials with linear colours,
 // lights, camera, background and the render settings the scene asks for. Loading fills it
-// (scene_loader.h); the BVH and the GPU packing read it. See docs/render-model.md.
+// (scene_loader.h); the BVH and the GPU packing read it. See ../shared/docs/render-model.md.
 #pragma once
 
 #include <cstdint>

@@ -10,6 +10,8 @@
 #include "cpu/optics.h"
 #include "cpu/ray_offset.h"
 #include "cpu/reference_renderer.h"
+#include "render/packed_scene.h"
+#include "render/render_params.h"
 #include "render/sampling.h"
 #include "scene/scene_loader.h"
 
@@ -158,6 +160,41 @@ TEST(ReferenceSampling, GridIsAsSquareAsTheCountAllows) {
     EXPECT_EQ(stratifiedColumns(16), 4u);
     EXPECT_EQ(stratifiedColumns(7), 1u);
     EXPECT_EQ(stratifiedColumns(12), 3u);
+}
+
+// Every count a scene may ask for: the columns divide n, and the next divisor of n above them is
+// above sqrt(n) (no squarer grid exists).
+TEST(ReferenceSampling, GridColumnsAreTheLargestDivisorUpToTheSquareRoot) {
+    for (std::uint32_t n = 1; n <= kMaxSamplesPerPixel; ++n) {
+        const std::uint32_t columns = stratifiedColumns(n);
+        ASSERT_GE(columns, 1u) << "n = " << n;
+        ASSERT_EQ(n % columns, 0u) << "n = " << n;
+        ASSERT_LE(std::uint64_t(columns) * columns, n) << "n = " << n;
+        std::uint32_t next = columns + 1;  // n + 1 where n has no larger divisor (n = 1)
+        while (next <= n && n % next != 0) ++next;
+        ASSERT_GT(std::uint64_t(next) * next, n) << "n = " << n << ": " << next << " divides it too";
+    }
+}
+
+// From n = 65535^2 on, c * c in 32 bits would wrap (65536^2 = 2^32) before it passed n: such a
+// guard would loop on past sqrt(n) and divide by a wrapped c = 0.
+TEST(ReferenceSampling, GridColumnsOfCountsNear2To32) {
+    EXPECT_EQ(stratifiedColumns(0x80000000u), 32768u);  // 2^31: 2^15 x 2^16
+    EXPECT_EQ(stratifiedColumns(65535u * 65535u), 65535u);
+    EXPECT_EQ(stratifiedColumns(65535u * 65536u), 65535u);
+    EXPECT_EQ(stratifiedColumns(0xFFFFFFFFu), 65535u);  // 3 * 5 * 17 * 257 * 65537
+    EXPECT_EQ(stratifiedColumns(4294967291u), 1u);      // the largest prime below 2^32
+}
+
+// The GPU's render parameters carry the same grid as the CPU reference's samples use.
+TEST(ReferenceSampling, TheGpuGetsTheSameGrid) {
+    Scene scene;
+    for (std::uint32_t n : {1u, 2u, 7u, 8u, 12u, 16u, 4095u, 4096u}) {
+        scene.settings.samplesPerPixel = n;
+        EXPECT_EQ(gpu::sampleGridColumns(makeRenderParams(scene, analyseScene(scene), gpu::kLeafEntryFlag, 1000)),
+                  stratifiedColumns(n))
+            << "n = " << n;
+    }
 }
 
 TEST(ReferenceSampling, StratifiedSamplesCoverEachCellOnce) {

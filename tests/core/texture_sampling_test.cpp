@@ -1,5 +1,5 @@
-// Texture filtering and the background mappings of docs/render-model.md, on the CPU reference's
-// functions: hand-computed values, the axes and poles, and seams.
+// Texture filtering and the background mappings of ../shared/docs/render-model.md, on the CPU
+// reference's functions: hand-computed values, the axes and poles, and seams.
 #include <gtest/gtest.h>
 
 #include <cmath>
