@@ -23,7 +23,7 @@
 #include "gpu/vulkan_renderer.h"
 #include "plain_primary.spv.h"
 #include "plain_primary_texel.spv.h"
-#include "render/traversal_nodes.h"
+#include "gpu_input/traversal_nodes.h"
 
 namespace vitrum {
 namespace {
@@ -40,7 +40,7 @@ struct PlainCamera {
     glm::ivec4 rootLeaf;
 };
 
-// vitrum's GPU nodes (render/traversal_nodes.h, already Aila-Laine: both children's boxes in the
+// vitrum's GPU nodes (gpu_input/traversal_nodes.h, already Aila-Laine: both children's boxes in the
 // parent) in the baseline's textbook encoding: links in a texel of their own, a leaf as
 // ~firstTriangle with its count.
 std::vector<PlainNode> toPlainNodes(const TraversalNodes& tree) {

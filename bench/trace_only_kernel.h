@@ -19,7 +19,7 @@
 #include "gpu/gpu_buffer.h"
 #include "gpu/vulkan_device.h"
 #include "ray_schedules.h"
-#include "render/traversal_nodes.h"
+#include "gpu_input/traversal_nodes.h"
 #include "trace_rays.spv.h"
 #include "trace_rays_wide.spv.h"
 #include "wide_bvh.h"

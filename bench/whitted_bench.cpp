@@ -36,7 +36,7 @@
 #include "gpu/trace_kernel_cache.h"
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
-#include "render/traversal_nodes.h"
+#include "gpu_input/traversal_nodes.h"
 #include "scene/scene_loader.h"
 
 namespace vitrum {

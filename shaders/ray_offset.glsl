@@ -1,7 +1,7 @@
 // Offsetting a new ray's origin off the surface it starts on: Waechter and Binder, "A Fast and
 // Robust Method for Avoiding Self-Intersection", Ray Tracing Gems, ch. 6. `n` is the geometric
 // normal on the side the new ray leaves towards. The chapter's absolute constants (origin region
-// 1/32, offset 1/65536 there) are scaled to the scene by the host (host/cpu/ray_offset.h,
+// 1/32, offset 1/65536 there) are scaled to the scene by the host (host/render_model/ray_offset.h,
 // rayOffsetScale, says why): offsetRegion and offsetDistance of shared/render_params.h.
 #ifndef VITRUM_RAY_OFFSET_GLSL
 #define VITRUM_RAY_OFFSET_GLSL

@@ -24,7 +24,7 @@ void startPrimaryRay(uvec2 pixel) {
     vec2 position = vec2(pixel) + sampleOffsetInPixel(pixelIndex, k, samplesPerPixel(params), sampleGridColumns(params));
     vec3 d = cameraRayDirection(position);
     // Off the surface the camera lies on (a normal of 0 where none), on the ray's side, with that
-    // side's media (host/render/camera_surface.h: primaryRayOrigin).
+    // side's media (host/analysis/camera_surface.h: primaryRayOrigin).
     vec3 n = cameraSurfaceNormal(params);
     bool behind = ieeeDot(d, n) < 0.0;
     st.ray.origin = vec4(offsetRayOrigin(cameraPosition(params), behind ? -n : n), uintBitsToFloat(0u));

@@ -1,6 +1,6 @@
 // What this build of trace.comp can simulate: Vulkan specialization constants (ids in
 // shared/trace_constants.h), set by the host from the scene's analysis
-// (host/render/trace_specialization.cpp) and the device (host/gpu/trace_pipeline.cpp). A feature
+// (host/gpu_input/trace_specialization.cpp) and the device (host/gpu/trace_pipeline.cpp). A feature
 // that is off is constant false, so the driver's compiler removes its code; the defaults below
 // are the general kernel (`--no-specialize`), which decides everything at run time.
 #ifndef VITRUM_SPECIALIZATION_GLSL

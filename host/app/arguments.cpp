@@ -1,11 +1,18 @@
 #include "app/arguments.h"
 
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 #include "common/error.h"
 
 namespace vitrum {
+
+bool wantsHelp(int argc, char** argv, int first) {
+    for (int i = first; i < argc; ++i)
+        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return true;
+    return false;
+}
 
 Arguments::Arguments(int argc, char** argv, int first) {
     for (int i = first; i < argc; ++i) args_.emplace_back(argv[i]);

@@ -11,6 +11,9 @@
 
 namespace vitrum {
 
+// Whether argv[first..] asks for a command's help (--help or -h).
+bool wantsHelp(int argc, char** argv, int first);
+
 class Arguments {
 public:
     Arguments(int argc, char** argv, int first);

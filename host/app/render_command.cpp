@@ -296,11 +296,10 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
 }  // namespace
 
 int renderCommand(int argc, char** argv, int first) {
-    for (int i = first; i < argc; ++i)
-        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
-            std::cout << renderHelp();
-            return 0;
-        }
+    if (wantsHelp(argc, argv, first)) {
+        std::cout << renderHelp();
+        return 0;
+    }
     RenderCommand command = parse(argc, argv, first);
     using Clock = std::chrono::steady_clock;
     auto start = Clock::now();

@@ -24,10 +24,10 @@
 
 #include "bvh/bvh_traversal.h"
 #include "cpu/optics.h"
-#include "cpu/ray_offset.h"
-#include "render/medium_materials.h"
-#include "render/sampling.h"
-#include "render/scene_features.h"
+#include "render_model/ray_offset.h"
+#include "render_model/medium_materials.h"
+#include "render_model/sampling.h"
+#include "analysis/scene_features.h"
 
 namespace vitrum {
 namespace {
@@ -101,7 +101,7 @@ public:
                 continue;
             }
             counters.primaryRays += 1;
-            // Off the surface the camera lies on, if any, on the ray's side (render/camera_surface.h).
+            // Off the surface the camera lies on, if any, on the ray's side (analysis/camera_surface.h).
             const bool behind = glm::dot(d, cameraSurface_) < Real(0);
             sum += trace(primaryRayOrigin(cameraFrom_, cameraSurface_, d, offsetScale_), d, 0,
                          behind ? cameraMediaBehind_ : cameraMedia_, Color(1), counters);

@@ -9,7 +9,7 @@
 
 #include "bvh/bvh.h"
 #include "image/image.h"
-#include "render/render_stats.h"
+#include "stats/render_stats.h"
 #include "scene/scene.h"
 
 namespace vitrum {

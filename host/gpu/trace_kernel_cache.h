@@ -13,7 +13,7 @@
 #include "gpu/compute_pipeline.h"
 #include "gpu/trace_pipeline.h"
 #include "gpu/vulkan_device.h"
-#include "render/trace_specialization.h"
+#include "gpu_input/trace_specialization.h"
 
 namespace vitrum {
 

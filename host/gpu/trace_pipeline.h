@@ -7,7 +7,7 @@
 #include <span>
 
 #include "gpu/compute_pipeline.h"
-#include "render/trace_specialization.h"
+#include "gpu_input/trace_specialization.h"
 #include "shared/trace_bindings.h"
 #include "shared/trace_constants.h"
 

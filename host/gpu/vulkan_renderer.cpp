@@ -9,9 +9,9 @@
 #include "gpu/tile_size.h"
 #include "gpu/trace_kernel_cache.h"
 #include "gpu/trace_pipeline.h"
-#include "render/packed_scene.h"
-#include "render/render_params.h"
-#include "render/scene_features.h"
+#include "gpu_input/packed_scene.h"
+#include "gpu_input/render_params.h"
+#include "analysis/scene_features.h"
 
 namespace vitrum {
 namespace {

@@ -10,7 +10,7 @@
 #include "gpu/trace_pipeline.h"
 #include "gpu/vulkan_device.h"
 #include "image/image.h"
-#include "render/render_stats.h"
+#include "stats/render_stats.h"
 #include "scene/scene.h"
 
 namespace vitrum {
@@ -33,7 +33,7 @@ struct VulkanRenderOptions {
     // Pixels a side; 0: the device's default (gpu/tile_size.h: 256 on lavapipe, as large as
     // memory allows on a GPU). A pixel's buffers take 0.5-1.5 KiB.
     std::uint32_t tileSize = 0;
-    // Build the kernel for what the scene needs (render/trace_specialization.h); false: the
+    // Build the kernel for what the scene needs (gpu_input/trace_specialization.h); false: the
     // general kernel, which decides everything at run time (same image, more code to run).
     bool specialize = true;
     // How the kernel adds up its statistics: this way, or the nearest way before it that the

@@ -27,7 +27,7 @@ VITRUM_CONST uint kMaxLeafTriangles = 8u;
 // The same tree as the GPU traverses it (Aila and Laine, "Understanding the Efficiency of Ray
 // Traversal on GPUs", 2009): only the interior nodes, each holding both children's boxes, so a
 // visit reads one node (4 texels) and tests two boxes. Child 0 is BvhNode's first child, child 1
-// its second; nodes keep the depth-first order of their BvhNodes (host/render/traversal_nodes.h).
+// its second; nodes keep the depth-first order of their BvhNodes (host/gpu_input/traversal_nodes.h).
 //   min0.xyz, max0.xyz: child 0's box; min0.w (uint bits): child 0's entry
 //   min1.xyz, max1.xyz: child 1's box; min1.w (uint bits): child 1's entry
 //   max0.w (uint bits): the split axis (0, 1, 2); max1.w: 0

@@ -1,5 +1,5 @@
 // The parameters of one dispatch of trace.comp: a texel buffer of kRenderParamsTexels texels
-// (shaders/bindings.glsl), filled by host/render/render_params.cpp. Every lane is read through
+// (shaders/bindings.glsl), filled by host/gpu_input/render_params.cpp. Every lane is read through
 // its accessor below (both languages) and written through its setter (C++): a lane has one
 // meaning, and where it lives is written here only.
 #ifndef VITRUM_RENDER_PARAMS_H
@@ -52,7 +52,7 @@ VITRUM_INLINE float airIor(VITRUM_PARAMS p) { return p.background.w; }
 VITRUM_INLINE uint imageWidth(VITRUM_PARAMS p) { return p.image.x; }
 VITRUM_INLINE uint imageHeight(VITRUM_PARAMS p) { return p.image.y; }
 VITRUM_INLINE uint samplesPerPixel(VITRUM_PARAMS p) { return p.image.z; }
-// Columns of the stratified sample grid (render/sampling.h); rows = samples / columns.
+// Columns of the stratified sample grid (render_model/sampling.h); rows = samples / columns.
 VITRUM_INLINE uint sampleGridColumns(VITRUM_PARAMS p) { return p.image.w; }
 VITRUM_INLINE uint tileX(VITRUM_PARAMS p) { return p.tile.x; }
 VITRUM_INLINE uint tileY(VITRUM_PARAMS p) { return p.tile.y; }
@@ -80,7 +80,7 @@ VITRUM_INLINE bool coincidentOpaqueOn(VITRUM_PARAMS p) { return p.surfaceChecks.
 VITRUM_INLINE float minWeight(VITRUM_PARAMS p) { return p.thresholds.x; }
 // The distance within which surfaces touch: 1e-5 of the scene's diagonal (SceneFeatures).
 VITRUM_INLINE float touchingDistance(VITRUM_PARAMS p) { return p.thresholds.y; }
-// Waechter and Binder's ray-origin offsets scaled to the scene (host/cpu/ray_offset.h): the
+// Waechter and Binder's ray-origin offsets scaled to the scene (host/render_model/ray_offset.h): the
 // radius of the region around the origin where offsets are absolute, and that offset.
 VITRUM_INLINE float offsetRegion(VITRUM_PARAMS p) { return p.thresholds.z; }
 VITRUM_INLINE float offsetDistance(VITRUM_PARAMS p) { return p.thresholds.w; }
@@ -88,7 +88,7 @@ VITRUM_INLINE float offsetDistance(VITRUM_PARAMS p) { return p.thresholds.w; }
 // kMaxLeafTriangles triangles.
 VITRUM_INLINE uint bvhRoot(VITRUM_PARAMS p) { return p.bvh.x; }
 // The unit normal of the surface the camera lies on, 0 if none: primary rays start off it on their
-// side (host/render/camera_surface.h), with cameraMedia in front and cameraMediaBehind behind.
+// side (host/analysis/camera_surface.h), with cameraMedia in front and cameraMediaBehind behind.
 VITRUM_INLINE vec3 cameraSurfaceNormal(VITRUM_PARAMS p) { return vec3(p.cameraSurface); }
 
 #ifdef __cplusplus

@@ -1,5 +1,5 @@
 // The specialization constant ids of trace.comp: shaders/specialization.glsl declares a constant
-// at each, host/render/trace_specialization.cpp and host/gpu/trace_pipeline.cpp set them.
+// at each, host/gpu_input/trace_specialization.cpp and host/gpu/trace_pipeline.cpp set them.
 #ifndef VITRUM_TRACE_CONSTANTS_H
 #define VITRUM_TRACE_CONSTANTS_H
 

@@ -1,5 +1,5 @@
 // The statistics of a render, written once: trace.comp counts them (shaders/statistics.glsl), the
-// host adds up the dispatches' counters and writes them to --stats (host/render/trace_counts.h),
+// host adds up the dispatches' counters and writes them to --stats (host/stats/trace_counts.h),
 // and the CPU reference counts those it can measure.
 //
 // X(index, name, combine, group, key, measured):

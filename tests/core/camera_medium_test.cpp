@@ -1,4 +1,4 @@
-// The media around the camera (host/render/camera_medium.h): the winding number that decides
+// The media around the camera (host/analysis/camera_medium.h): the winding number that decides
 // inside from outside, and the stack it gives primary rays.
 #include <cmath>
 
@@ -6,8 +6,8 @@
 
 #include "common/error.h"
 #include "glass_scenes.h"
-#include "render/camera_medium.h"
-#include "render/scene_features.h"
+#include "analysis/camera_medium.h"
+#include "analysis/scene_features.h"
 
 #include "../support/test_meshes.h"
 
@@ -71,7 +71,7 @@ TEST(CameraMedium, MoreMediaThanTheStackHoldsKeepsTheInnermostWithAWarning) {
 }
 
 // The camera lies on a triangle when it is closer to it than the offset a ray starting there gets
-// along its normal (render/camera_surface.h): 32 float ulps of the coordinates here. Primary rays
+// along its normal (analysis/camera_surface.h): 32 float ulps of the coordinates here. Primary rays
 // then start off it, with the media of their side: above the top face of a glass box, air; below
 // it, the box.
 TEST(CameraSurface, TheCameraLiesOnATriangleWithinItsRayOffset) {

@@ -1,4 +1,4 @@
-// The search for glass surfaces close enough to touch (render/glass_proximity.h): the
+// The search for glass surfaces close enough to touch (analysis/glass_proximity.h): the
 // separating-axis test on pairs whose distance is known by construction, its soundness on random
 // pairs against sampled distances, and the search on built and project scenes.
 #include <gtest/gtest.h>
@@ -9,8 +9,8 @@
 #include <utility>
 
 #include "glass_scenes.h"
-#include "render/double_box.h"
-#include "render/glass_proximity.h"
+#include "analysis/double_box.h"
+#include "analysis/glass_proximity.h"
 #include "scene/scene_loader.h"
 
 namespace vitrum {

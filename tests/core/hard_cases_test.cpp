@@ -17,9 +17,9 @@
 #include "bvh/bvh.h"
 #include "bvh/bvh_traversal.h"
 #include "cpu/optics.h"
-#include "cpu/ray_offset.h"
-#include "render/packed_scene.h"
-#include "render/render_params.h"
+#include "render_model/ray_offset.h"
+#include "gpu_input/packed_scene.h"
+#include "gpu_input/render_params.h"
 #include "scene/scene.h"
 #include "shared/gpu_types.h"
 

@@ -1,12 +1,12 @@
-// The material whose medium each object encloses (render/medium_materials.h): one rule, which
+// The material whose medium each object encloses (render_model/medium_materials.h): one rule, which
 // the CPU reference and the GPU's packed scene both follow.
 #include <gtest/gtest.h>
 
 #include <vector>
 
 #include "bvh/bvh.h"
-#include "render/medium_materials.h"
-#include "render/packed_scene.h"
+#include "render_model/medium_materials.h"
+#include "gpu_input/packed_scene.h"
 
 #include "../support/scenes_in_code.h"
 

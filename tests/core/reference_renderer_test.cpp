@@ -8,11 +8,11 @@
 
 #include "bvh/bvh.h"
 #include "cpu/optics.h"
-#include "cpu/ray_offset.h"
+#include "render_model/ray_offset.h"
 #include "cpu/reference_renderer.h"
-#include "render/packed_scene.h"
-#include "render/render_params.h"
-#include "render/sampling.h"
+#include "gpu_input/packed_scene.h"
+#include "gpu_input/render_params.h"
+#include "render_model/sampling.h"
 #include "scene/scene_loader.h"
 
 #include "../support/scenes_in_code.h"

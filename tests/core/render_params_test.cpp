@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "../support/scenes_in_code.h"
-#include "render/render_params.h"
+#include "gpu_input/render_params.h"
 #include "shared/gpu_types.h"
-#include "render/scene_features.h"
+#include "analysis/scene_features.h"
 
 namespace vitrum {
 namespace {

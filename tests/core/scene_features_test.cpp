@@ -4,8 +4,8 @@
 
 #include <set>
 
-#include "render/scene_features.h"
-#include "render/trace_specialization.h"
+#include "analysis/scene_features.h"
+#include "gpu_input/trace_specialization.h"
 #include "scene/scene_loader.h"
 #include "shared/gpu_types.h"
 #include "glass_scenes.h"

@@ -3,8 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/render_stats.h"
-#include "render/trace_counts.h"
+#include "stats/render_stats.h"
+#include "stats/trace_counts.h"
 
 namespace vitrum {
 namespace {

@@ -1,4 +1,4 @@
-// The GPU's node layout (render/traversal_nodes.h) against the BVH it is made from: walked from
+// The GPU's node layout (gpu_input/traversal_nodes.h) against the BVH it is made from: walked from
 // its root entry, it must reach every triangle once, in leaf order, inside the boxes above it.
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <random>
 
 #include "bvh/bvh.h"
-#include "render/traversal_nodes.h"
+#include "gpu_input/traversal_nodes.h"
 
 namespace vitrum {
 namespace {

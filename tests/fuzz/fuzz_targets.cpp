@@ -10,7 +10,7 @@
 
 #include "common/error.h"
 #include "image/image.h"
-#include "render/scene_features.h"
+#include "analysis/scene_features.h"
 #include "scene/scene_loader.h"
 
 namespace vitrum {

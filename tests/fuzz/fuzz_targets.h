@@ -1,6 +1,6 @@
 // The fuzz targets' entry functions: each writes the bytes to a file in a private temporary
 // folder and loads it the way `vitrum render` would, and analyses a loaded scene as the renderers
-// do (render/scene_features.h: camera media and surface, touching glass). Bad input may only end
+// do (analysis/scene_features.h: camera media and surface, touching glass). Bad input may only end
 // in an InputError (caught here, returning 0); any other exception escapes, and a crash is a
 // crash: both are bugs.
 // The libFuzzer wrappers (tests/fuzz/fuzz_*.cpp, built with -DVITRUM_FUZZ=ON) and the regression

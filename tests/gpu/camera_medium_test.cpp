@@ -1,5 +1,5 @@
 // A camera inside glass (render model: "Primary rays start with the camera's medium"): primary
-// rays start with the media around the camera on both backends (host/render/camera_medium.h).
+// rays start with the media around the camera on both backends (host/analysis/camera_medium.h).
 #include "gpu_test_support.h"
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // A pixel's colour sum in fixed point (shaders/colour_sum.glsl) on lavapipe through
-// shaders/colour_sum_test.comp, against the same sums worked out with 64-bit integers here: each
+// tests/gpu/kernels/colour_sum_test.comp, against the same sums worked out with 64-bit integers here: each
 // term is floor(c * 2^32) of the float c clamped to [0, 4294967040], NaN and negative terms are
 // 0, and a sum past 2^64 - 1 stays at 2^64 - 1.
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "gpu/test_kernels.h"
+#include "test_kernels.h"
 #include "gpu_test_support.h"
 
 namespace vitrum::testing {

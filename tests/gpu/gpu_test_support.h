@@ -18,12 +18,12 @@
 
 #include "bvh/bvh.h"
 #include "cpu/reference_renderer.h"
-#include "gpu/test_kernels.h"
+#include "test_kernels.h"
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
 #include "image/image.h"
 #include "image/image_diff.h"
-#include "render/render_stats.h"
+#include "stats/render_stats.h"
 #include "scene/scene_loader.h"
 
 namespace vitrum::testing {

@@ -1,5 +1,5 @@
 // Hard cases stay numerically stable (docs/hard-cases.md): each case on lavapipe and on the CPU
-// reference, through the optics kernel (shaders/optics_test.comp) for formula-level cases and
+// reference, through the optics kernel (tests/gpu/kernels/optics_test.comp) for formula-level cases and
 // through renderBoth on tiny scenes built in code for everything the ray tree does. Expected
 // numbers come from physics (Fresnel, Snell, the ray-tree series) computed here in double.
 // tests/gpu/optics_gpu_test.cpp already holds the GLSL optics to the CPU's on random cases with
@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "cpu/optics.h"
-#include "cpu/ray_offset.h"
-#include "gpu/test_kernels.h"
+#include "render_model/ray_offset.h"
+#include "test_kernels.h"
 #include "gpu_test_support.h"
 #include "../support/scenes_in_code.h"
 #include "../support/test_meshes.h"
@@ -454,7 +454,7 @@ TEST(HardCaseScale, ImageIsTheSameScaledBy1e3And1eMinus3AndMovedFarAway) {
     // the block and in their images through the glass. At 48 x 36 those pixels are a visible
     // share of the image (measured 0.6 to 0.9% over 0.05, mean 1.5e-3 to 2e-3): we allow 1.5% and
     // 3e-3. Moved 1e4 units away (1,000 times the scene's size), coordinates keep only 2^-10 ~ 1e-3
-    // absolute precision and the relative offset (32 ulps, host/cpu/ray_offset.h) is 0.03 units
+    // absolute precision and the relative offset (32 ulps, host/render_model/ray_offset.h) is 0.03 units
     // along an axis normal, 0.3% of the scene: edges in refracted images move a little more
     // (measured 1.4% of pixels over 0.05, mean 3.3e-3; with the chapter's 256 ulps it was 7% and
     // 1.04e-2). We allow 2% and 5e-3; a self-hit (acne, black glass) costs far more than that.

@@ -23,7 +23,7 @@ TEST(ImageDiff, GeosphereFromCommandLineCameraMatchesReference) {
     expectImagesMatch(renderBoth(scene));
 }
 
-// The GPU's BVH layout holds interior nodes only (render/traversal_nodes.h): a tree that is one
+// The GPU's BVH layout holds interior nodes only (gpu_input/traversal_nodes.h): a tree that is one
 // leaf is all in its root entry, and an empty scene's root is a leaf of no triangles (and this
 // one has no material either).
 TEST(ImageDiff, OneLeafAndEmptyScenesMatchReference) {

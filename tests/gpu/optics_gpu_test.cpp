@@ -1,4 +1,4 @@
-// The GLSL optics functions (shaders/optics.glsl) run on lavapipe through shaders/optics_test.comp,
+// The GLSL optics functions (shaders/optics.glsl) run on lavapipe through tests/gpu/kernels/optics_test.comp,
 // held to the same numbers as the CPU versions in tests/core/reference_renderer_test.cpp: the
 // lecture's worked example (../shared/seed/dielectrics-lecture.txt, "Example with real numbers"),
 // hand calculations, and a property sweep of random cases against host/cpu/optics.h in float.
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "cpu/optics.h"
-#include "gpu/test_kernels.h"
+#include "test_kernels.h"
 #include "gpu_test_support.h"
 
 namespace vitrum::testing {

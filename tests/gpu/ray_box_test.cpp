@@ -1,4 +1,4 @@
-// The traversal's ray/box test (shaders/ray_box.glsl) on lavapipe through shaders/box_test.comp,
+// The traversal's ray/box test (shaders/ray_box.glsl) on lavapipe through tests/gpu/kernels/box_test.comp,
 // on the cases where its arithmetic is degenerate: a ray in the plane of a face (0 * inf is NaN,
 // and the axis must not constrain the segment), flat boxes of axis-aligned triangles, and
 // segments that end on a face. Each expectation is the slab test worked out by hand for the
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "gpu/test_kernels.h"
+#include "test_kernels.h"
 #include "gpu_test_support.h"
 
 namespace vitrum::testing {

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "gpu_test_support.h"
-#include "render/scene_features.h"
+#include "analysis/scene_features.h"
 
 namespace vitrum::testing {
 namespace {

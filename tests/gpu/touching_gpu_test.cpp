@@ -1,5 +1,5 @@
 // The touching-surface functions of shaders/touching.glsl, run on lavapipe through
-// shaders/touching_test.comp. They collect, during the closest-hit traversal, what the CPU
+// tests/gpu/kernels/touching_test.comp. They collect, during the closest-hit traversal, what the CPU
 // reference finds with a second traversal (findTouchingCrossings in host/cpu/reference_renderer.cpp):
 // for every other object than the hit's, its nearest glass crossing within the touching distance
 // of the hit, nearest first, ties by object index (docs/render-model-decisions.md, "Touching
@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-#include "gpu/test_kernels.h"
+#include "test_kernels.h"
 #include "gpu_test_support.h"
 
 namespace vitrum::testing {

@@ -1,0 +1,61 @@
+#include "gpu_input/packed_scene.h"
+
+#include "render_model/medium_materials.h"
+
+#include <bit>
+#include <algorithm>
+#include <cmath>
+
+namespace vitrum {
+static_assert(std::uint32_t(BackgroundKind::Constant) == gpu::kBackgroundConstant &&
+              std::uint32_t(BackgroundKind::Spherical) == gpu::kBackgroundSpherical &&
+              std::uint32_t(BackgroundKind::Cube) == gpu::kBackgroundCube);
+static_assert(std::uint32_t(TextureFilter::Bilinear) == gpu::kFilterBilinear &&
+              std::uint32_t(TextureFilter::Nearest) == gpu::kFilterNearest);
+
+namespace {
+float bits(std::uint32_t value) { return std::bit_cast<float>(value); }
+}  // namespace
+
+PackedScene packScene(const Scene& scene, const Bvh& bvh) {
+    PackedScene packed;
+    packed.bvh = makeTraversalNodes(bvh.nodes);
+    packed.vertices = packTriangleVertices(bvh, scene.triangles);
+    for (std::size_t i = 0; i < packed.vertices.size(); ++i) {
+        const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
+        if (scene.materials[t.material].model == MaterialModel::Glass) packed.vertices[i].v2.w = bits(gpu::kTriangleGlass);
+    }
+    packed.shading.reserve(bvh.triangleOrder.size());
+    for (std::uint32_t index : bvh.triangleOrder) {
+        const Triangle& t = scene.triangles[index];
+        packed.shading.push_back({
+            .n0 = glm::vec4(t.normal[0], 0.0f),
+            .n1 = glm::vec4(t.normal[1], 0.0f),
+            .n2 = glm::vec4(t.normal[2], 0.0f),
+            .uv01 = glm::vec4(t.uv[0], t.uv[1]),
+            .uv2 = glm::vec4(t.uv[2], 0.0f, 0.0f),
+        });
+    }
+    for (const Material& m : scene.materials) {
+        std::uint32_t texture = m.diffuseTexture >= 0 ? std::uint32_t(m.diffuseTexture) : gpu::kNoTexture;
+        packed.materials.push_back({
+            .ambient = glm::vec4(m.ambient, bits(std::uint32_t(m.model))),
+            .diffuse = glm::vec4(m.diffuse, bits(texture)),
+            .specular = glm::vec4(m.specular, m.shininess),
+            .attenuation = glm::vec4(m.attenuation, m.ior),
+        });
+    }
+    // The kernel reads material 0 for lanes that are not at a hit (one fetch a round for all
+    // lanes, shaders/trace.comp), so there is always one.
+    if (packed.materials.empty()) packed.materials.push_back({});
+    for (const PointLight& light : scene.lights)
+        packed.lights.push_back({glm::vec4(light.position, light.inverseSquare ? 1.0f : 0.0f), glm::vec4(light.colour, 0.0f)});
+    for (const Texture& texture : scene.textures) {
+        packed.textures.push_back({glm::uvec4(packed.texels.size() / 3, texture.width, texture.height, 0)});
+        for (const glm::vec3& texel : texture.texels) packed.texels.insert(packed.texels.end(), {texel.x, texel.y, texel.z});
+    }
+    packed.objectMaterials = objectMediumMaterials(scene);
+    return packed;
+}
+
+}  // namespace vitrum
