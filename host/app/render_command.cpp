@@ -18,6 +18,7 @@
 #include "common/progress.h"
 #include "cpu/reference_renderer.h"
 #include "gpu/gpu_buffer.h"
+#include "gpu/tile_buffers.h"
 #include "gpu/tile_size.h"
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
@@ -254,8 +255,7 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
     VkDeviceSize texels = 0;
     for (const Texture& texture : scene.textures) texels += texture.texels.size();
     const std::uint32_t tile = tileSizeFor(device.description(), options.tileSize);
-    const VkDeviceSize tilePixels =
-        VkDeviceSize(std::min(tile, scene.camera.width)) * std::min(tile, scene.camera.height);
+    const glm::uvec2 tilePixels(std::min(tile, scene.camera.width), std::min(tile, scene.camera.height));
     // As gpu/vulkan_renderer.cpp binds them: the scene's geometry and materials as texel buffers.
     constexpr BufferKind kTexel = BufferKind::Texel, kStorage = BufferKind::Storage;
     struct Buffer {
@@ -273,8 +273,9 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         {"lights", scene.lights.size() * sizeof(gpu::GpuLight), kTexel},
         {"texture texels", texels * 3 * sizeof(float), kStorage, false, true},
     };
+    // The general kernel's: the scene's analysis, which may need fewer pending rays, comes later.
     for (const TileBuffer& buffer : kTileBuffers)
-        buffers.push_back({buffer.what, tilePixels * buffer.bytesPerPixel, kStorage, true});
+        buffers.push_back({buffer.what, tileBufferBytes(buffer, tilePixels, gpu::kRayStackSize), kStorage, true});
     VkDeviceSize total = 0;
     for (const auto& buffer : buffers) {
         if (buffer.bytes > bufferLimit(device, buffer.kind).bytes) {

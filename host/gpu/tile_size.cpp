@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "gpu/tile_buffers.h"
+
 namespace vitrum {
 
 std::uint32_t defaultTileSize(const DeviceDescription& device) {

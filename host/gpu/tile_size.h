@@ -1,28 +1,13 @@
 // How large a tile the Vulkan backend renders at a time. A tile's pixels each have a slot in the
-// per-tile buffers below, so its size decides their memory, and the number of dispatches (with a
-// submit and a wait each) the image takes.
+// per-tile buffers (gpu/tile_buffers.h), so its size decides their memory, and the number of
+// dispatches (with a submit and a wait each) the image takes.
 #pragma once
 
-#include <array>
 #include <cstdint>
 
-#include "gpu/gpu_layout.h"
 #include "gpu/vulkan_device.h"
 
 namespace vitrum {
-
-// The buffers sized by the tile, with the most bytes a pixel each can need (the general kernel's:
-// a specialized kernel may keep fewer pending rays, gpu/vulkan_renderer.cpp).
-struct TileBuffer {
-    const char* what;
-    std::uint64_t bytesPerPixel;
-};
-inline constexpr std::array<TileBuffer, 4> kTileBuffers{{
-    {"pixels of one tile", 16},
-    {"trace state of one tile", gpu::kTraceStateBytes},
-    {"pending rays of one tile", gpu::kRayStackSize * sizeof(gpu::PendingRay)},
-    {"traversal stacks of one tile", gpu::kTraversalStackSize * sizeof(std::uint32_t)},
-}};
 
 inline constexpr std::uint32_t kMinTileSize = 8;
 inline constexpr std::uint32_t kMaxTileSize = 4096;  // pixels a side; --tile's bound too

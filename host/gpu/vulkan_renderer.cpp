@@ -6,6 +6,7 @@
 
 #include "gpu/gpu_buffer.h"
 #include "gpu/gpu_layout.h"
+#include "gpu/tile_buffers.h"
 #include "gpu/tile_size.h"
 #include "gpu/trace_kernel_cache.h"
 #include "gpu/trace_pipeline.h"
@@ -38,6 +39,196 @@ std::vector<glm::vec4> objectMediumTexels(const PackedScene& packed) {
     return texels;
 }
 
+// Every buffer trace.comp reads or writes, each at its binding (shaders/shared/trace_bindings.h).
+struct TraceBuffers {
+    std::vector<GpuBuffer> owned;
+    std::array<const GpuBuffer*, gpu::kTraceBindingCount> bound{};
+
+    GpuBuffer& add(std::uint32_t binding, GpuBuffer buffer) {
+        owned.push_back(std::move(buffer));
+        bound[binding] = &owned.back();
+        return owned.back();
+    }
+};
+
+// The scene, uploaded once; the render parameters, rewritten before every dispatch; the
+// statistics and work cursor, zeroed before and read after it; and the tile's buffers
+// (gpu/tile_buffers.h), the pixels among them copied into the image as each tile is done, so that
+// the image's size is bound by no buffer limit.
+TraceBuffers makeBuffers(VulkanDevice& device, const PackedScene& packed, glm::uvec2 tile,
+                         std::uint32_t pendingRayCapacity) {
+    TraceBuffers b;
+    b.owned.reserve(gpu::kTraceBindingCount);  // `bound` points into it
+    const gpu::RenderParams noParams{};
+    b.add(gpu::kBindingParams, makeTexelBuffer(device, std::span<const gpu::RenderParams>(&noParams, 1),
+                                               "render parameters", MemoryUse::HostShared));
+    b.add(gpu::kBindingNodes, makeTexelBuffer(device, spanOf(packed.bvh.nodes), "BVH nodes"));
+    b.add(gpu::kBindingVertices, makeTexelBuffer(device, spanOf(packed.vertices), "triangle vertices"));
+    b.add(gpu::kBindingShading, makeTexelBuffer(device, spanOf(packed.shading), "triangle normals and uvs"));
+    b.add(gpu::kBindingMaterials, makeTexelBuffer(device, spanOf(packed.materials), "materials"));
+    b.add(gpu::kBindingLights, makeTexelBuffer(device, spanOf(packed.lights), "lights"));
+    b.add(gpu::kBindingTextures, makeStorageBuffer(device, spanOf(packed.textures), "texture table"));
+    b.add(gpu::kBindingTexels, makeStorageBuffer(device, spanOf(packed.texels), "texture texels"));
+    b.add(gpu::kBindingObjectMedia, makeTexelBuffer(device, spanOf(objectMediumTexels(packed)), "object media"));
+    for (const TileBuffer& buffer : kTileBuffers) {
+        const VkDeviceSize bytes = std::max<VkDeviceSize>(tileBufferBytes(buffer, tile, pendingRayCapacity), 16);
+        b.add(buffer.binding, GpuBuffer(device, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, buffer.what, buffer.memory));
+    }
+    b.add(gpu::kBindingStats, GpuBuffer(device, gpu::kDispatchCounterCount * sizeof(std::uint32_t),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "statistics and work cursor"));
+    return b;
+}
+
+// Trace state, pending rays and traversal stack of one pixel (the tile's buffers but its pixels).
+std::uint64_t stateBytesPerPixel(std::uint32_t pendingRayCapacity) {
+    std::uint64_t bytes = 0;
+    for (const TileBuffer& buffer : kTileBuffers)
+        if (buffer.binding != gpu::kBindingPixels)
+            bytes += buffer.perPendingRay ? pendingRayCapacity * (buffer.bytesPerPixel / gpu::kRayStackSize)
+                                          : buffer.bytesPerPixel;
+    return bytes;
+}
+
+// Renders the image tile by tile: each tile's first dispatch, then the resumable kernel until no
+// pixel of the tile is left (shaders/suspend.glsl), then the tile's pixels into the image.
+class TileLoop {
+public:
+    TileLoop(VulkanDevice& device, const TraceBuffers& buffers, gpu::RenderParams params,
+             const TraceSpecialization& kernel, StatisticsSums sums, bool persistent, TraceKernelCache& kernels,
+             RenderStats& stats)
+        : device_(device),
+          buffers_(buffers),
+          params_(params),
+          kernel_(kernel),
+          sums_(sums),
+          persistent_(persistent),
+          kernels_(kernels),
+          stats_(stats),
+          counters_(buffers.bound[gpu::kBindingStats]->as<std::uint32_t>()),
+          width_(gpu::imageWidth(params)),
+          height_(gpu::imageHeight(params)) {}
+
+    // lavapipe compiles a kernel at its first dispatch: one that traces nothing (an empty tile)
+    // measures the compile time alone. A kernel dispatched before (kept in `kernels`) is compiled.
+    double compile(const TraceKernelCache::Kernel& k) {
+        if (k.compiled) return 0.0;
+        const auto start = Clock::now();
+        gpu::setTile(params_, glm::uvec4(0u));
+        writeParams();
+        device_.submitAndWait([&](VkCommandBuffer commands) { k.pipeline.record(commands, 1, 1); });
+        k.compiled = true;
+        return secondsSince(start);
+    }
+
+    Image render(const ComputePipeline& firstPass, glm::uvec2 tileSize, const std::function<void(double)>& progress) {
+        Image image(width_, height_);
+        const std::uint32_t tilesX = (width_ + tileSize.x - 1) / tileSize.x;
+        const std::uint32_t tilesY = (height_ + tileSize.y - 1) / tileSize.y;
+        const auto start = Clock::now();
+        for (std::uint32_t ty = 0; ty < tilesY; ++ty)
+            for (std::uint32_t tx = 0; tx < tilesX; ++tx) {
+                const glm::uvec4 tile(tx * tileSize.x, ty * tileSize.y, tileSize.x, tileSize.y);
+                gpu::setTile(params_, tile);
+                const std::uint32_t givenUp = persistent_ ? dispatchPersistent(firstPass) : dispatch(firstPass);
+                stats_.restartedPixels += givenUp;
+                if (givenUp > 0 && !resumable_) {
+                    const auto buildStart = Clock::now();
+                    const TraceKernelCache::Kernel k = kernels_.get(device_, kernel_, true, sums_);
+                    k.pipeline.bind(buffers_.bound);
+                    compile(k);
+                    resumable_ = &k.pipeline;
+                    resumableSeconds_ = secondsSince(buildStart);
+                    gpu::setTile(params_, tile);
+                }
+                for (std::uint32_t unfinished = givenUp; unfinished > 0;) unfinished = dispatch(*resumable_);
+                readTile(tile, image);
+                if (progress) progress(double(ty * tilesX + tx + 1) / double(tilesX * tilesY));
+            }
+        stats_.addPhase("render", secondsSince(start) - resumableSeconds_ - readbackSeconds_);
+        if (resumable_) stats_.addPhase("resumable kernel", resumableSeconds_);  // its pipeline and compile
+        stats_.addPhase("readback", readbackSeconds_);
+        return image;
+    }
+
+private:
+    void writeParams() { std::memcpy(buffers_.bound[gpu::kBindingParams]->mapped(), &params_, sizeof(params_)); }
+
+    void zeroCounters() { std::memset(counters_, 0, gpu::kDispatchCounterCount * sizeof(std::uint32_t)); }
+
+    // A tile at the image's right or bottom edge may be cut off: only the workgroups over its part
+    // inside the image are dispatched.
+    glm::uvec2 tileGroups() const {
+        const std::uint32_t columns = std::min(gpu::tileWidth(params_), width_ - gpu::tileX(params_));
+        const std::uint32_t rows = std::min(gpu::tileHeight(params_), height_ - gpu::tileY(params_));
+        return glm::uvec2((columns + kTraceGroupSize - 1) / kTraceGroupSize, (rows + kTraceGroupSize - 1) / kTraceGroupSize);
+    }
+
+    // One dispatch of `groups` workgroups; returns the pixels it left unfinished.
+    std::uint32_t run(const ComputePipeline& pipeline, glm::uvec2 groups) {
+        device_.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, groups.x, groups.y); });
+        ++stats_.dispatches;
+        stats_.addDispatch(counters_);
+        return counters_[TraceStatistic::unfinishedPixels];
+    }
+
+    std::uint32_t dispatch(const ComputePipeline& pipeline) {
+        writeParams();
+        zeroCounters();
+        return run(pipeline, tileGroups());
+    }
+
+    // The persistent kernel's subgroups take the tile's units until they are used up, or until
+    // each has traced as much as lavapipe's loop limit lets it: it is dispatched again, the work
+    // cursor kept, until the cursor has reached the units (a subgroup's share of a workgroup each:
+    // the pipeline's subgroups are full, of the device's subgroup size), since a subgroup traces
+    // every unit it takes. A subgroup that finds no unit costs a pass over the kernel's code
+    // (lavapipe runs every branch, masked), so there is one subgroup a kUnitsPerPersistentSubgroup
+    // units.
+    std::uint32_t dispatchPersistent(const ComputePipeline& pipeline) {
+        writeParams();
+        zeroCounters();
+        const glm::uvec2 groups = tileGroups();
+        const std::uint32_t units = groups.x * groups.y * (kTraceGroupSize * kTraceGroupSize / device_.subgroups().size);
+        const glm::uvec2 persistentGroups(
+            (groups.x * groups.y + kUnitsPerPersistentSubgroup - 1) / kUnitsPerPersistentSubgroup, 1);
+        std::uint32_t unfinished = 0;
+        for (;;) {
+            unfinished += run(pipeline, persistentGroups);
+            const std::uint32_t cursor = counters_[gpu::kWorkCursor];
+            if (cursor >= units) return unfinished;
+            zeroCounters();
+            counters_[gpu::kWorkCursor] = cursor;
+        }
+    }
+
+    // The tile's pixels inside the image, from their slots (trace.comp's traceUnit) to the image.
+    void readTile(glm::uvec4 tile, Image& image) {
+        const auto start = Clock::now();
+        const auto* values = buffers_.bound[gpu::kBindingPixels]->as<glm::vec4>();
+        const std::uint32_t columns = std::min(tile.z, width_ - tile.x);
+        const std::uint32_t rows = std::min(tile.w, height_ - tile.y);
+        for (std::uint32_t y = 0; y < rows; ++y)
+            for (std::uint32_t x = 0; x < columns; ++x)
+                image.at(tile.x + x, tile.y + y) = glm::vec3(values[y * tile.z + x]);
+        readbackSeconds_ += secondsSince(start);
+    }
+
+    VulkanDevice& device_;
+    const TraceBuffers& buffers_;
+    gpu::RenderParams params_;
+    const TraceSpecialization& kernel_;
+    StatisticsSums sums_;
+    bool persistent_;
+    TraceKernelCache& kernels_;
+    RenderStats& stats_;
+    std::uint32_t* counters_;
+    std::uint32_t width_, height_;
+    // Taken when a first dispatch gives up a pixel: most scenes never need it.
+    const ComputePipeline* resumable_ = nullptr;
+    double resumableSeconds_ = 0;
+    double readbackSeconds_ = 0;
+};
+
 }  // namespace
 
 Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, const VulkanRenderOptions& options,
@@ -57,170 +248,32 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     stats.kernel = kernel;
 
     auto start = Clock::now();
-    PackedScene packed = packScene(scene, bvh);
-    const std::uint32_t width = scene.camera.width;
-    const std::uint32_t height = scene.camera.height;
+    const PackedScene packed = packScene(scene, bvh);
     const std::uint32_t tileSize = tileSizeFor(device.description(), options.tileSize);
     stats.tileSize = tileSize;
-    const std::uint32_t tileWidth = std::min(tileSize, width);
-    const std::uint32_t tileHeight = std::min(tileSize, height);
-
-    const gpu::RenderParams noParams{};
-    GpuBuffer params = makeTexelBuffer(device, std::span<const gpu::RenderParams>(&noParams, 1), "render parameters",
-                                       MemoryUse::HostShared);  // rewritten before every dispatch
-    GpuBuffer nodes = makeTexelBuffer(device, spanOf(packed.bvh.nodes), "BVH nodes");
-    GpuBuffer vertices = makeTexelBuffer(device, spanOf(packed.vertices), "triangle vertices");
-    GpuBuffer shading = makeTexelBuffer(device, spanOf(packed.shading), "triangle normals and uvs");
-    GpuBuffer materials = makeTexelBuffer(device, spanOf(packed.materials), "materials");
-    GpuBuffer lights = makeTexelBuffer(device, spanOf(packed.lights), "lights");
-    GpuBuffer textures = makeStorageBuffer(device, spanOf(packed.textures), "texture table");
-    GpuBuffer texels = makeStorageBuffer(device, spanOf(packed.texels), "texture texels");
-    const std::vector<glm::vec4> mediumTexels = objectMediumTexels(packed);
-    GpuBuffer objectMedia = makeTexelBuffer(device, spanOf(mediumTexels), "object media");
-    // Like the state buffers, the pixels are one tile's (a slot a pixel), copied into the image
-    // as each tile is done: so the image's size is not bound by the device's buffer limits.
-    const VkDeviceSize tilePixels = VkDeviceSize(tileWidth) * tileHeight;
-    // The kernel writes each pixel, with its slot's status in .w (shaders/suspend.glsl); the host
-    // reads the colours.
-    GpuBuffer pixels(device, tilePixels * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                     "pixels of one tile", MemoryUse::Readback);
-    GpuBuffer states(device, tilePixels * gpu::kTraceStateBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                     "trace state of one tile", MemoryUse::DeviceOnly);
-    // The resumable kernel keeps pending rays by slot, the first dispatch by invocation (trace.comp's
-    // pendingRayIndex): as many as a tile's whole workgroups have, at most.
-    const auto wholeGroups = [](std::uint32_t side) { return (side + kTraceGroupSize - 1) / kTraceGroupSize; };
-    const VkDeviceSize tileInvocations =
-        VkDeviceSize(wholeGroups(tileWidth)) * wholeGroups(tileHeight) * kTraceGroupSize * kTraceGroupSize;
-    const VkDeviceSize pendingRayBytes = tileInvocations * kernel.pendingRayCapacity * sizeof(gpu::PendingRay);
-    GpuBuffer pendingRays(device, std::max<VkDeviceSize>(pendingRayBytes, 16), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                          "pending rays of one tile", MemoryUse::DeviceOnly);
-    GpuBuffer traversalStacks(device, tilePixels * gpu::kTraversalStackSize * sizeof(std::uint32_t),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "traversal stacks of one tile", MemoryUse::DeviceOnly);
-    stats.stateBytesPerPixel = gpu::kTraceStateBytes + kernel.pendingRayCapacity * sizeof(gpu::PendingRay) +
-                               gpu::kTraversalStackSize * sizeof(std::uint32_t);
-    GpuBuffer counters(device, gpu::kDispatchCounterCount * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                       "statistics and work cursor");
+    const glm::uvec2 tile(std::min(tileSize, scene.camera.width), std::min(tileSize, scene.camera.height));
+    const TraceBuffers buffers = makeBuffers(device, packed, tile, kernel.pendingRayCapacity);
+    stats.stateBytesPerPixel = stateBytesPerPixel(kernel.pendingRayCapacity);
     stats.addPhase("upload", secondsSince(start));
 
     start = Clock::now();
-    const std::array<const GpuBuffer*, gpu::kTraceBindingCount> bound{
-        &params, &nodes, &vertices, &shading, &materials, &lights, &textures,
-        &texels, &objectMedia, &pixels, &states, &counters, &pendingRays, &traversalStacks};
     const StatisticsSums sums = statisticsSumsFor(device, options.statisticsSums);
     // The build without subgroup operations counts each lane's steps as a group's.
     stats.lanesPerGroup = sums == StatisticsSums::atomics ? 1u : device.subgroups().size;
     // Subgroups that go on taking work (trace.comp's main) where the device runs on the CPU:
     // lavapipe gives each of its threads a fixed share of a dispatch's workgroups, so a thread
     // that runs ahead would otherwise wait for the others at the end (docs/gpu-design.md).
-    const bool persistent = options.persistentSubgroups && sums == StatisticsSums::shuffles &&
-                            device.description().cpu;
+    const bool persistent = options.persistentSubgroups && sums == StatisticsSums::shuffles && device.description().cpu;
     TraceKernelCache ownKernels(2);
     TraceKernelCache& kernels = options.kernels ? *options.kernels : ownKernels;
     const TraceKernelCache::Kernel firstPass = kernels.get(device, kernel, false, sums, persistent);
-    firstPass.pipeline.bind(bound);
+    firstPass.pipeline.bind(buffers.bound);
     stats.addPhase("pipeline", secondsSince(start));
 
-    gpu::RenderParams p = makeRenderParams(scene, stats.features, packed.bvh.rootEntry, options.iterationBudget);
-    const std::uint32_t tilesX = (width + tileWidth - 1) / tileWidth;
-    const std::uint32_t tilesY = (height + tileHeight - 1) / tileHeight;
-    auto* counterValues = counters.as<std::uint32_t>();
-
-    // lavapipe compiles a kernel at its first dispatch: one that traces nothing (an empty tile)
-    // measures the compile time alone. A kernel dispatched before (kept in `kernels`) is compiled.
-    auto compile = [&](const TraceKernelCache::Kernel& k) {
-        if (k.compiled) return 0.0;
-        const auto compileStart = Clock::now();
-        gpu::setTile(p, glm::uvec4(0u));
-        std::memcpy(params.mapped(), &p, sizeof(p));
-        device.submitAndWait([&](VkCommandBuffer commands) { k.pipeline.record(commands, 1, 1); });
-        k.compiled = true;
-        return secondsSince(compileStart);
-    };
-    stats.addPhase("compile", compile(firstPass));
-
-    // Taken when a first dispatch gives up a pixel: most scenes never need it.
-    const ComputePipeline* resumable = nullptr;
-    double resumableSeconds = 0;
-    // A tile at the image's right or bottom edge may be cut off: only the workgroups over its part
-    // inside the image are dispatched.
-    auto tileGroups = [&] {
-        return glm::uvec2((std::min(gpu::tileWidth(p), width - gpu::tileX(p)) + kTraceGroupSize - 1) / kTraceGroupSize,
-                          (std::min(gpu::tileHeight(p), height - gpu::tileY(p)) + kTraceGroupSize - 1) / kTraceGroupSize);
-    };
-    // One dispatch of `groups` workgroups; returns the pixels it left unfinished.
-    auto run = [&](const ComputePipeline& pipeline, glm::uvec2 groups) {
-        device.submitAndWait([&](VkCommandBuffer commands) { pipeline.record(commands, groups.x, groups.y); });
-        ++stats.dispatches;
-        stats.addDispatch(counterValues);
-        return counterValues[TraceStatistic::unfinishedPixels];
-    };
-    auto dispatch = [&](const ComputePipeline& pipeline) {
-        std::memcpy(params.mapped(), &p, sizeof(p));
-        std::memset(counterValues, 0, gpu::kDispatchCounterCount * sizeof(std::uint32_t));
-        return run(pipeline, tileGroups());
-    };
-    // The persistent kernel's subgroups take the tile's units until they are used up, or until
-    // each has traced as much as lavapipe's loop limit lets it: it is dispatched again, the work
-    // cursor kept, until the cursor has reached the units (a subgroup's share of a workgroup each:
-    // the pipeline's subgroups are full, of the device's subgroup size), since a subgroup traces
-    // every unit it takes. A subgroup that finds no unit costs a pass over the kernel's code
-    // (lavapipe runs every branch, masked), so there is one subgroup a kUnitsPerPersistentSubgroup
-    // units.
-    auto dispatchPersistent = [&](const ComputePipeline& pipeline) {
-        std::memcpy(params.mapped(), &p, sizeof(p));
-        std::memset(counterValues, 0, gpu::kDispatchCounterCount * sizeof(std::uint32_t));
-        const glm::uvec2 groups = tileGroups();
-        const std::uint32_t units = groups.x * groups.y * (kTraceGroupSize * kTraceGroupSize / device.subgroups().size);
-        const glm::uvec2 persistentGroups(
-            (groups.x * groups.y + kUnitsPerPersistentSubgroup - 1) / kUnitsPerPersistentSubgroup, 1);
-        std::uint32_t unfinished = 0;
-        for (;;) {
-            unfinished += run(pipeline, persistentGroups);
-            const std::uint32_t cursor = counterValues[gpu::kWorkCursor];
-            if (cursor >= units) return unfinished;
-            std::memset(counterValues, 0, gpu::kDispatchCounterCount * sizeof(std::uint32_t));
-            counterValues[gpu::kWorkCursor] = cursor;
-        }
-    };
-    Image image(width, height);
-    double readbackSeconds = 0;
-    // The tile's pixels inside the image, from their slots (trace.comp's traceUnit) to the image.
-    auto readTile = [&](glm::uvec4 tile) {
-        const auto readStart = Clock::now();
-        const auto* values = pixels.as<glm::vec4>();
-        const std::uint32_t columns = std::min(tile.z, width - tile.x);
-        const std::uint32_t rows = std::min(tile.w, height - tile.y);
-        for (std::uint32_t y = 0; y < rows; ++y)
-            for (std::uint32_t x = 0; x < columns; ++x)
-                image.at(tile.x + x, tile.y + y) = glm::vec3(values[y * tile.z + x]);
-        readbackSeconds += secondsSince(readStart);
-    };
-    start = Clock::now();
-    for (std::uint32_t ty = 0; ty < tilesY; ++ty) {
-        for (std::uint32_t tx = 0; tx < tilesX; ++tx) {
-            const glm::uvec4 tile(tx * tileWidth, ty * tileHeight, tileWidth, tileHeight);
-            gpu::setTile(p, tile);
-            const std::uint32_t givenUp =
-                persistent ? dispatchPersistent(firstPass.pipeline) : dispatch(firstPass.pipeline);
-            stats.restartedPixels += givenUp;
-            if (givenUp > 0 && !resumable) {
-                const auto buildStart = Clock::now();
-                const TraceKernelCache::Kernel k = kernels.get(device, kernel, true, sums);
-                k.pipeline.bind(bound);
-                compile(k);
-                resumable = &k.pipeline;
-                resumableSeconds = secondsSince(buildStart);
-                gpu::setTile(p, tile);
-            }
-            for (std::uint32_t unfinished = givenUp; unfinished > 0;) unfinished = dispatch(*resumable);
-            readTile(tile);
-            if (options.progress) options.progress(double(ty * tilesX + tx + 1) / double(tilesX * tilesY));
-        }
-    }
-    stats.addPhase("render", secondsSince(start) - resumableSeconds - readbackSeconds);
-    if (resumable) stats.addPhase("resumable kernel", resumableSeconds);  // its pipeline and compile
-    stats.addPhase("readback", readbackSeconds);
-    return image;
+    TileLoop loop(device, buffers, makeRenderParams(scene, stats.features, packed.bvh.rootEntry, options.iterationBudget),
+                  kernel, sums, persistent, kernels, stats);
+    stats.addPhase("compile", loop.compile(firstPass));
+    return loop.render(firstPass.pipeline, tile, options.progress);
 }
 
 }  // namespace vitrum

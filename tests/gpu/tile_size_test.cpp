@@ -1,6 +1,7 @@
 // The default tile (gpu/tile_size.h): 256 pixels a side on a CPU device, and on a GPU the largest
 // multiple of 8 whose per-tile buffers fit both a storage buffer binding and an eighth of the
 // device's memory.
+#include "gpu/tile_buffers.h"
 #include "gpu/tile_size.h"
 
 #include <cmath>
@@ -105,3 +106,23 @@ TEST(TileSize, ARenderReportsItsTile) {
 
 }  // namespace
 }  // namespace vitrum::testing
+
+namespace vitrum {
+namespace {
+
+// A tile's buffers as the renderer makes them: a pixel's worth each for the tile's pixels, but the
+// pending rays, which the first dispatch keeps by invocation of whole 8x8 workgroups.
+TEST(TileBuffers, PendingRaysCoverTheTilesWholeWorkgroups) {
+    const glm::uvec2 tile(10, 17);  // 2 x 3 workgroups: 384 invocations
+    for (const TileBuffer& buffer : kTileBuffers) {
+        const std::uint64_t bytes = tileBufferBytes(buffer, tile, 9);
+        if (buffer.perPendingRay) EXPECT_EQ(bytes, 384u * 9u * sizeof(gpu::PendingRay)) << buffer.what;
+        else EXPECT_EQ(bytes, 170u * buffer.bytesPerPixel) << buffer.what;
+    }
+    // The general kernel's capacity gives the table's bytes a pixel over whole workgroups.
+    for (const TileBuffer& buffer : kTileBuffers)
+        EXPECT_EQ(tileBufferBytes(buffer, glm::uvec2(16, 24), gpu::kRayStackSize), 384u * buffer.bytesPerPixel);
+}
+
+}  // namespace
+}  // namespace vitrum

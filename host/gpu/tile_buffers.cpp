@@ -1,0 +1,15 @@
+#include "gpu/tile_buffers.h"
+
+#include "gpu/trace_pipeline.h"
+
+namespace vitrum {
+
+std::uint64_t tileBufferBytes(const TileBuffer& buffer, glm::uvec2 tile, std::uint32_t pendingRayCapacity) {
+    if (!buffer.perPendingRay) return std::uint64_t(tile.x) * tile.y * buffer.bytesPerPixel;
+    const auto wholeGroups = [](std::uint32_t side) { return (side + kTraceGroupSize - 1) / kTraceGroupSize; };
+    const std::uint64_t invocations =
+        std::uint64_t(wholeGroups(tile.x)) * wholeGroups(tile.y) * kTraceGroupSize * kTraceGroupSize;
+    return invocations * pendingRayCapacity * (buffer.bytesPerPixel / gpu::kRayStackSize);
+}
+
+}  // namespace vitrum
