@@ -13,10 +13,9 @@
 namespace vitrum {
 namespace {
 
-// For tests only: VITRUM_MAX_BUFFER_BYTES=N lowers the storage buffer limit to N bytes (never
-// raises it), so that "does not fit the device" can be tested with a small scene
-// (tests/cli/bad_input_test.cpp).
-std::optional<VkDeviceSize> testBufferLimit() {
+// VITRUM_MAX_BUFFER_BYTES=N lowers the buffer limits to N bytes, never raises them: a device with
+// smaller buffers (docs/environment.md).
+std::optional<VkDeviceSize> environmentBufferLimit() {
     const char* text = std::getenv("VITRUM_MAX_BUFFER_BYTES");
     if (!text || !*text) return std::nullopt;
     char* end = nullptr;
@@ -79,7 +78,7 @@ BufferLimit bufferLimit(const VulkanDevice& device, BufferKind kind) {
     BufferLimit limit = kind == BufferKind::Storage
                             ? BufferLimit{limits.maxStorageBufferRange, "maxStorageBufferRange"}
                             : BufferLimit{VkDeviceSize(limits.maxTexelBufferElements) * 16, "maxTexelBufferElements"};
-    if (auto test = testBufferLimit(); test && *test < limit.bytes) limit = {*test, "VITRUM_MAX_BUFFER_BYTES"};
+    if (auto test = environmentBufferLimit(); test && *test < limit.bytes) limit = {*test, "VITRUM_MAX_BUFFER_BYTES"};
     return limit;
 }
 

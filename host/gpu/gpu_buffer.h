@@ -86,7 +86,7 @@ enum class BufferKind { Storage, Texel };
 
 // The largest buffer of a kind the checks allow: the device's maxStorageBufferRange, or
 // maxTexelBufferElements texels of 16 bytes, or less where the environment variable
-// VITRUM_MAX_BUFFER_BYTES (for tests only) asks for less.
+// VITRUM_MAX_BUFFER_BYTES asks for less (docs/environment.md).
 struct BufferLimit {
     VkDeviceSize bytes;
     const char* source;  // "maxStorageBufferRange", "maxTexelBufferElements" or "VITRUM_MAX_BUFFER_BYTES"
@@ -109,8 +109,8 @@ std::vector<std::uint32_t> memoryTypesFor(const VkPhysicalDeviceMemoryProperties
 std::optional<std::uint32_t> firstTypeWithRoom(std::span<const std::uint32_t> types,
                                                const std::function<VkResult(std::uint32_t)>& allocate);
 
-// For tests only: VITRUM_STAGED_UPLOADS=1 fills every Upload buffer through a staging buffer, as
-// on a discrete GPU, also where its memory is mappable (lavapipe's always is).
+// VITRUM_STAGED_UPLOADS=1 fills every Upload buffer through a staging buffer, as on a discrete
+// GPU, also where its memory is mappable (lavapipe's always is; docs/environment.md).
 bool stagedUploadsForced();
 
 // A texel buffer of R32G32B32A32_UINT texels holding `data`, whose size must be a multiple of 16
