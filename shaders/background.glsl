@@ -46,12 +46,12 @@ vec3 cubeUv(vec3 d) {
 
 vec3 backgroundRadiance(vec3 d) {
     uint kind = backgroundKind();
-    if (kind == kBackgroundSpherical) return sampleTexture(backgroundTexture(params), sphericalUv(d), true, false);
+    if (kind == kBackgroundSpherical) return sampleTexture(backgroundTexture(), sphericalUv(d), true, false);
     if (kind == kBackgroundCube) {
         vec3 c = cubeUv(d);
-        return sampleTexture(backgroundTexture(params) + uint(c.x), c.yz, false, false);
+        return sampleTexture(backgroundTexture() + uint(c.x), c.yz, false, false);
     }
-    return backgroundColour(params);
+    return backgroundColour();
 }
 
 #endif

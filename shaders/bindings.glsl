@@ -37,6 +37,8 @@ layout(std430, set = 0, binding = kBindingTraversalStacks) buffer TraversalStack
 // dispatch, several ms each for this kernel, and a kernel without a cache over half a second.
 RenderParams params;
 
+#include "render_params.glsl"  // its lanes by name
+
 RenderParams loadRenderParams() {
     RenderParams p;
     p.cameraFrom = fetchVec4(paramTexels, 0u, 0u);

@@ -128,20 +128,20 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     uint closest = st.traversal.closest;
     vec2 barycentrics = st.traversal.barycentrics;
     uint top = st.traversal.stackTop;
-    bool collectTouching = kTouchingProbe && mode == kTraverseClosest && touchingProbeOn(params);
+    bool collectTouching = kTouchingProbe && mode == kTraverseClosest && touchingProbeOn();
     // Glass resting on an opaque surface (render-model-decisions.md, "Glass on an opaque
     // surface"): the nearest opaque triangle hit below the nearest hit so far plus e (ties: the
     // lower index), which the CPU reference's probe beyond a glass hit finds too, and whether the
     // nearest hit so far is glass. When the traversal is over and an opaque hit lies within e
     // beyond a glass one, the opaque one is the hit (st.candidates.contact, closestIsGlass).
-    bool collectContact = kOpaqueContact && mode == kTraverseClosest && opaqueContactOn(params);
+    bool collectContact = kOpaqueContact && mode == kTraverseClosest && opaqueContactOn();
     // Coincident opaque surfaces (render-model-decisions.md): the nearest opaque triangle hit from
     // behind (the ray leaves through it) below the nearest hit so far plus e, ties as above. When
     // the traversal is over and it lies within e of the nearest hit, it is the hit
     // (st.candidates.leaving).
-    bool collectLeaving = kCoincidentOpaque && mode == kTraverseClosest && coincidentOpaqueOn(params);
+    bool collectLeaving = kCoincidentOpaque && mode == kTraverseClosest && coincidentOpaqueOn();
     // Boxes and candidates are tested up to tMax + reach.
-    float reach = collectTouching || collectContact || collectLeaving ? touchingDistance(params) : 0.0;
+    float reach = collectTouching || collectContact || collectLeaving ? touchingDistance() : 0.0;
     uvec4 touchingObjects = st.candidates.touchingObjects;
     vec4 touchingT = st.candidates.touchingT;
     vec4 contact = st.candidates.contact;
@@ -150,7 +150,7 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     uint current = kNoEntry;  // the entry to visit next, taken off the stack or kept from a visit
     if (top == kFreshTraversal) {
         top = 0u;
-        current = bvhRoot(params);
+        current = bvhRoot();
     }
     bool over = !tracing;
     // Aila and Laine's "while-while": inner nodes until every lane of the SIMD group holds a leaf

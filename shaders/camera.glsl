@@ -19,10 +19,10 @@ vec2 sampleOffsetInPixel(uint pixelIndex, uint k, uint n, uint columns) {
 }
 
 vec3 cameraRayDirection(vec2 imagePosition) {
-    float halfWidth = 0.5 * float(imageWidth(params));
-    float halfHeight = 0.5 * float(imageHeight(params));
-    vec3 d = (imagePosition.x - halfWidth) * cameraAxisX(params) + (halfHeight - imagePosition.y) * cameraAxisY(params) -
-             focalLength(params) * cameraAxisZ(params);
+    float halfWidth = 0.5 * float(imageWidth());
+    float halfHeight = 0.5 * float(imageHeight());
+    vec3 d = (imagePosition.x - halfWidth) * cameraAxisX() + (halfHeight - imagePosition.y) * cameraAxisY() -
+             focalLength() * cameraAxisZ();
     return ieeeNormalize(d);
 }
 

@@ -11,7 +11,7 @@
 
 // IOR of the medium inside the innermost of `count` objects in `media`, or of the scene's air.
 float ior(uvec4 media, uint count) {
-    if (!usesMaterial(kMaterialGlass) || count == 0u) return airIor(params);
+    if (!usesMaterial(kMaterialGlass) || count == 0u) return airIor();
     return objectMedium(media[count - 1u]).w;
 }
 

@@ -27,7 +27,7 @@ uint pendingRayIndex(uint entry) { return entry * gPendingStride + gPendingPlace
 void placePendingRays(uint slot) {
     if (kResumable) {
         gPendingPlace = slot;
-        gPendingStride = tileWidth(params) * tileHeight(params);
+        gPendingStride = tileWidth() * tileHeight();
     } else {
         uint invocations = gl_WorkGroupSize.x * gl_WorkGroupSize.y;
         uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;

@@ -9,8 +9,8 @@
 #include "bindings.glsl"
 
 float offsetComponent(float p, float n) {
-    float originRegion = offsetRegion(params);
-    float absoluteOffset = offsetDistance(params);
+    float originRegion = offsetRegion();
+    float absoluteOffset = offsetDistance();
     const float kIntScale = 32.0;
     int offsetInt = int(kIntScale * n);
     float pInt = intBitsToFloat(floatBitsToInt(p) + (p < 0.0 ? -offsetInt : offsetInt));

@@ -19,21 +19,21 @@ void beginRay() {
 
 // The next sample's primary ray through `pixel`.
 void startPrimaryRay(uvec2 pixel) {
-    uint pixelIndex = pixel.y * imageWidth(params) + pixel.x;
+    uint pixelIndex = pixel.y * imageWidth() + pixel.x;
     uint k = st.samplesDone;
-    vec2 position = vec2(pixel) + sampleOffsetInPixel(pixelIndex, k, samplesPerPixel(params), sampleGridColumns(params));
+    vec2 position = vec2(pixel) + sampleOffsetInPixel(pixelIndex, k, samplesPerPixel(), sampleGridColumns());
     vec3 d = cameraRayDirection(position);
     // Off the surface the camera lies on (a normal of 0 where none), on the ray's side, with that
     // side's media (host/analysis/camera_surface.h: primaryRayOrigin).
-    vec3 n = cameraSurfaceNormal(params);
+    vec3 n = cameraSurfaceNormal();
     bool behind = ieeeDot(d, n) < 0.0;
-    st.ray.origin = vec4(offsetRayOrigin(cameraPosition(params), behind ? -n : n), uintBitsToFloat(0u));
-    uint media = behind ? cameraMediaBehindCount(params) : cameraMediaCount(params);
+    st.ray.origin = vec4(offsetRayOrigin(cameraPosition(), behind ? -n : n), uintBitsToFloat(0u));
+    uint media = behind ? cameraMediaBehindCount() : cameraMediaCount();
     st.ray.direction = vec4(d, uintBitsToFloat(usesMaterial(kMaterialGlass) ? media : 0u));
     st.ray.weight = vec4(1.0);
     st.ray.media = behind ? params.cameraMediaBehind : params.cameraMedia;  // innermost last
     st.pendingRays = 0u;
-    if (maxDepth(params) == 0u) {
+    if (maxDepth() == 0u) {
         // max_depth 0: not even the primary ray is traced (render model); the sample is black.
         counters.depthLimitHits += 1u;
         st.phase = kPhaseNextRay;
@@ -61,7 +61,7 @@ void nextRay() {
 
 // The next sample's primary ray, or the end of the pixel.
 void startSample(uvec2 pixel) {
-    if (st.samplesDone >= samplesPerPixel(params)) st.phase = kPhaseDone;
+    if (st.samplesDone >= samplesPerPixel()) st.phase = kPhaseDone;
     else startPrimaryRay(pixel);  // begins a traversal, or (max_depth 0) goes to kPhaseNextRay
 }
 

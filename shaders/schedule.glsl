@@ -19,7 +19,7 @@
 // same pixels whichever thread takes it (so are the images and statistics). The persistent
 // kernel's subgroups go on taking units (main), so that a thread that is ahead takes more of them.
 uvec2 tileBlocks() {
-    uvec2 inside = min(uvec2(tileWidth(params), tileHeight(params)), uvec2(imageWidth(params), imageHeight(params)) - min(uvec2(tileX(params), tileY(params)), uvec2(imageWidth(params), imageHeight(params))));
+    uvec2 inside = min(uvec2(tileWidth(), tileHeight()), uvec2(imageWidth(), imageHeight()) - min(uvec2(tileX(), tileY()), uvec2(imageWidth(), imageHeight())));
     return (inside + gl_WorkGroupSize.xy - 1u) / gl_WorkGroupSize.xy;
 }
 

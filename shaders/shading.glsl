@@ -75,9 +75,9 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
         // touching distance of this hit along the ray, which the traversal collected.
         float farthest = t;
         uvec4 touching = uvec4(0u);
-        if (kTouchingProbe && touchingProbeOn(params)) {
+        if (kTouchingProbe && touchingProbeOn()) {
             counters.touchingProbes += 1u;
-            touching = selectTouching(st.candidates.touchingObjects, st.candidates.touchingT, t + touchingDistance(params), st.hit.object, farthest);
+            touching = selectTouching(st.candidates.touchingObjects, st.candidates.touchingT, t + touchingDistance(), st.hit.object, farthest);
         }
         st.touching = touching;
         st.farthestTouching = farthest;
@@ -128,7 +128,7 @@ vec3 directLight(GpuMaterial m, GpuLight light) {
 // is not zero; the shadow ray carries that term (st.shadowLight) to finishShadow.
 void nextLight(GpuMaterial m) {
     uint index = st.light;
-    if (!kShadowRays || index >= lightCount(params)) {
+    if (!kShadowRays || index >= lightCount()) {
         st.phase = usesMaterial(kMaterialPhong) && materialModel(m) == kMaterialPhong ? kPhaseScatter : kPhaseNextRay;
         return;
     }
@@ -155,11 +155,11 @@ void finishShadow() {
 // Whether a child of st.ray at `depth` with path weight `weight` is traced; a limit that stops
 // it is counted.
 bool admitChild(uint depth, vec3 weight) {
-    if (depth >= maxDepth(params)) {
+    if (depth >= maxDepth()) {
         counters.depthLimitHits += 1u;
         return false;
     }
-    if (all(lessThan(weight, vec3(minWeight(params))))) {
+    if (all(lessThan(weight, vec3(minWeight())))) {
         counters.weightCuts += 1u;
         return false;
     }

@@ -39,8 +39,8 @@ layout(constant_id = kConstantPersistentSubgroups) const bool kPersistentSubgrou
 
 bool usesMaterial(uint model) { return ((kMaterialModels >> model) & 1u) != 0u; }
 
-uint backgroundKind() { return kBackgroundKind == kAnyKind ? backgroundKindOf(params) : kBackgroundKind; }
-uint fresnelModel() { return kFresnelModel == kAnyKind ? fresnelModelOf(params) : kFresnelModel; }
-uint textureFilter() { return kTextureFilter == kAnyKind ? textureFilterOf(params) : kTextureFilter; }
+uint backgroundKind() { return kBackgroundKind == kAnyKind ? backgroundKindOf() : kBackgroundKind; }
+uint fresnelModel() { return kFresnelModel == kAnyKind ? fresnelModelOf() : kFresnelModel; }
+uint textureFilter() { return kTextureFilter == kAnyKind ? textureFilterOf() : kTextureFilter; }
 
 #endif

@@ -4,7 +4,7 @@
 // lavapipe silently ends a shader's loops after 65,535 iterations of a SIMD group. So every loop
 // iteration of this kernel is one small counted step (one BVH node, one leaf, one triangle, or one
 // round of shading, see main), counted for the group (bvh.glsl's traverse). A dispatch runs at most
-// `iterationBudget(params)` steps per group and unit of pixels. The first dispatch of a tile gives up the
+// `iterationBudget()` steps per group and unit of pixels. The first dispatch of a tile gives up the
 // pixels that are not done by then; the resumable build of this kernel (kResumable) restarts them
 // and keeps their state between its dispatches (suspend.glsl), and the host dispatches it until
 // every pixel of the tile is done. Nothing recurses. In the first dispatch, where subgroups are
@@ -44,14 +44,14 @@ void startUnit() {
 // the steps the SIMD group ran (the same in every lane).
 uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
     uvec2 local = tilePixel(unit);
-    uvec2 pixel = uvec2(tileX(params), tileY(params)) + local;
+    uvec2 pixel = uvec2(tileX(), tileY()) + local;
     // An invocation has a pixel to trace when it is inside the tile and the image and (in the
     // resumable kernel) the pixel is not done yet. One without returns at once, except where the
     // statistics are summed by shuffles (kFullSubgroups, statistics.glsl), which read every lane:
     // it then runs no step and counts nothing.
-    bool hasPixel = local.x < tileWidth(params) && local.y < tileHeight(params) && pixel.x < imageWidth(params) && pixel.y < imageHeight(params);
+    bool hasPixel = local.x < tileWidth() && local.y < tileHeight() && pixel.x < imageWidth() && pixel.y < imageHeight();
     if (!hasPixel && !kFullSubgroups) return 0u;
-    uint slot = local.y * tileWidth(params) + local.x;
+    uint slot = local.y * tileWidth() + local.x;
     placePendingRays(slot);
     if (!kResumable) {
         if (hasPixel) startPixel();
@@ -71,7 +71,7 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
     // the group's count, the same in all its lanes at the top of this loop. The loop is a
     // do-while, as bvh.glsl's are: a while loop would run its body once more with every lane
     // masked off.
-    uint budget = iterationBudget(params);
+    uint budget = iterationBudget();
     uint steps = 0u;
     if (st.phase == kPhaseStartSample) startSample(pixel);
     // The loop runs while some lane of the group has a pixel that is not done; a lane that is
@@ -142,7 +142,7 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
     st.steps += counters.loopSteps;
     bool done = st.phase == kPhaseDone && !givenUpGroup;
     if (hasPixel) {
-        pixels[slot] = slotPixel(done, colourOfSum(st.colour) / float(samplesPerPixel(params)));
+        pixels[slot] = slotPixel(done, colourOfSum(st.colour) / float(samplesPerPixel()));
         if (kResumable) suspendState(slot, !done);
     }
 
@@ -178,7 +178,7 @@ void main() {
     uvec3 totalMaxima = uvec3(0u);
     uint units = tileUnits();
     uint iterations = 0u;  // lavapipe's count for this subgroup, bounded from above
-    // Every unit runs with the same budget (iterationBudget(params)), whichever subgroup takes it and
+    // Every unit runs with the same budget (iterationBudget()), whichever subgroup takes it and
     // whatever it traced before: so a unit gives up the same pixels, and counts the same, in
     // every kernel. A subgroup takes another unit only while the driver's limit still holds a
     // whole budget more.
@@ -187,6 +187,6 @@ void main() {
         if (unit >= units) break;
         startUnit();
         iterations += traceUnit(unit, total, totalMaxima) + kUnitIterationsBeyondSteps;
-    } while (kPersistent && iterations + iterationBudget(params) + kUnitIterationsBeyondSteps <= kDriverLoopIterations);
+    } while (kPersistent && iterations + iterationBudget() + kUnitIterationsBeyondSteps <= kDriverLoopIterations);
     addStatistics(total, totalMaxima);
 }

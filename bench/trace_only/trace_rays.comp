@@ -34,6 +34,7 @@ const bool kCoincidentOpaque = false;
 const bool kResumable = false;
 const bool kFullSubgroups = true;
 RenderParams params;
+#include "render_params.glsl"
 
 #include "bvh.glsl"
 

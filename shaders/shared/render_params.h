@@ -1,6 +1,6 @@
 // The parameters of one dispatch of trace.comp: a texel buffer of kRenderParamsTexels texels
 // (shaders/bindings.glsl), filled by host/gpu_input/render_params.cpp. Every lane is read through
-// its accessor below (both languages) and written through its setter (C++): a lane has one
+// its accessor (VITRUM_RENDER_PARAM_LANES) and written through its setter (C++): a lane has one
 // meaning, and where it lives is written here only.
 #ifndef VITRUM_RENDER_PARAMS_H
 #define VITRUM_RENDER_PARAMS_H
@@ -30,66 +30,73 @@ struct RenderParams {
     uvec4 cameraMediaBehind; // media behind that surface, innermost last
 };
 
-#ifdef __cplusplus
-#define VITRUM_PARAMS const RenderParams&
-#define VITRUM_INLINE inline
-#else
-#define VITRUM_PARAMS RenderParams
-#define VITRUM_INLINE
-#endif
+// Each lane's accessor: X(type, name, member, lane) reads p.member.lane, FLAG a uint lane as a
+// bool, VECTOR a member's .xyz. C++ gets name(p) (below), GLSL name() on its `params`
+// (shaders/bindings.glsl), so that a kernel never copies the struct to read a lane.
+#define VITRUM_RENDER_PARAM_LANES(SCALAR, FLAG, VECTOR)                                             \
+    /* The pinhole camera of the render model (../shared/docs/render-model.md): a sample at */      \
+    /* image position (sx, sy) has direction normalize((sx - width/2) x_c + (height/2 - sy) y_c */  \
+    /* - f z_c), z_c pointing from the target back to the camera; f = height / (2 tan(fov_y/2)). */ \
+    VECTOR(cameraPosition, cameraFrom)                                                             \
+    SCALAR(float, focalLength, cameraFrom, w)                                                      \
+    VECTOR(cameraAxisX, cameraX)                                                                   \
+    VECTOR(cameraAxisY, cameraY)                                                                   \
+    VECTOR(cameraAxisZ, cameraZ)                                                                   \
+    VECTOR(backgroundColour, background) /* linear RGB */                                          \
+    SCALAR(float, airIor, background, w)                                                           \
+    SCALAR(uint, imageWidth, image, x)                                                             \
+    SCALAR(uint, imageHeight, image, y)                                                            \
+    SCALAR(uint, samplesPerPixel, image, z)                                                        \
+    /* columns of the stratified sample grid (render_model/sampling.h); rows = samples / columns */ \
+    SCALAR(uint, sampleGridColumns, image, w)                                                      \
+    SCALAR(uint, tileX, tile, x)                                                                   \
+    SCALAR(uint, tileY, tile, y)                                                                   \
+    SCALAR(uint, tileWidth, tile, z)                                                               \
+    SCALAR(uint, tileHeight, tile, w)                                                              \
+    SCALAR(uint, maxDepth, limits, x)                                                              \
+    /* loop steps a SIMD group may run in one dispatch (shaders/trace.comp) */                     \
+    SCALAR(uint, iterationBudget, limits, y)                                                       \
+    SCALAR(uint, lightCount, counts, x)                                                            \
+    SCALAR(uint, textureCount, counts, y)                                                          \
+    /* how many of cameraMedia and cameraMediaBehind hold objects */                               \
+    SCALAR(uint, cameraMediaCount, counts, z)                                                      \
+    SCALAR(uint, cameraMediaBehindCount, counts, w)                                                \
+    SCALAR(uint, fresnelModelOf, models, x) /* kFresnel* */                                        \
+    SCALAR(uint, backgroundKindOf, models, y) /* kBackground* */                                   \
+    SCALAR(uint, textureFilterOf, models, z) /* kFilter* */                                        \
+    /* the spherical map's texture, or the cube's +x face's (then -x, +y, -y, +z, -z) */           \
+    SCALAR(uint, backgroundTexture, models, w)                                                     \
+    /* glass hits look for touching surfaces of other glass objects (the scene has two) */        \
+    FLAG(touchingProbeOn, surfaceChecks, x)                                                        \
+    /* glass may rest on an opaque surface (SceneFeatures::opaqueContactPossible) */               \
+    FLAG(opaqueContactOn, surfaceChecks, y)                                                        \
+    /* opaque surfaces of two objects may coincide (SceneFeatures::coincidentOpaquePossible) */    \
+    FLAG(coincidentOpaqueOn, surfaceChecks, z)                                                     \
+    SCALAR(float, minWeight, thresholds, x)                                                        \
+    /* the distance within which surfaces touch: 1e-5 of the scene's diagonal (SceneFeatures) */   \
+    SCALAR(float, touchingDistance, thresholds, y)                                                 \
+    /* Waechter and Binder's ray-origin offsets scaled to the scene (render_model/ray_offset.h): */ \
+    /* the radius of the region around the origin where offsets are absolute, and that offset */   \
+    SCALAR(float, offsetRegion, thresholds, z)                                                     \
+    SCALAR(float, offsetDistance, thresholds, w)                                                   \
+    /* the root's entry (TraversalNode): node 0, or the one leaf of a small scene */               \
+    SCALAR(uint, bvhRoot, bvh, x)                                                                  \
+    /* the unit normal of the surface the camera lies on, 0 if none: primary rays start off it */ \
+    /* on their side (analysis/camera_surface.h), cameraMedia in front, cameraMediaBehind behind */ \
+    VECTOR(cameraSurfaceNormal, cameraSurface)
 
-// The pinhole camera of the render model (../shared/docs/render-model.md): a sample at image
-// position (sx, sy) has direction normalize((sx - width/2) x_c + (height/2 - sy) y_c - f z_c),
-// z_c pointing from the target back to the camera.
-VITRUM_INLINE vec3 cameraPosition(VITRUM_PARAMS p) { return vec3(p.cameraFrom); }
-// f = height / (2 tan(fov_y / 2)), in pixels.
-VITRUM_INLINE float focalLength(VITRUM_PARAMS p) { return p.cameraFrom.w; }
-VITRUM_INLINE vec3 cameraAxisX(VITRUM_PARAMS p) { return vec3(p.cameraX); }
-VITRUM_INLINE vec3 cameraAxisY(VITRUM_PARAMS p) { return vec3(p.cameraY); }
-VITRUM_INLINE vec3 cameraAxisZ(VITRUM_PARAMS p) { return vec3(p.cameraZ); }
-VITRUM_INLINE vec3 backgroundColour(VITRUM_PARAMS p) { return vec3(p.background); }  // linear RGB
-VITRUM_INLINE float airIor(VITRUM_PARAMS p) { return p.background.w; }
-VITRUM_INLINE uint imageWidth(VITRUM_PARAMS p) { return p.image.x; }
-VITRUM_INLINE uint imageHeight(VITRUM_PARAMS p) { return p.image.y; }
-VITRUM_INLINE uint samplesPerPixel(VITRUM_PARAMS p) { return p.image.z; }
-// Columns of the stratified sample grid (render_model/sampling.h); rows = samples / columns.
-VITRUM_INLINE uint sampleGridColumns(VITRUM_PARAMS p) { return p.image.w; }
-VITRUM_INLINE uint tileX(VITRUM_PARAMS p) { return p.tile.x; }
-VITRUM_INLINE uint tileY(VITRUM_PARAMS p) { return p.tile.y; }
-VITRUM_INLINE uint tileWidth(VITRUM_PARAMS p) { return p.tile.z; }
-VITRUM_INLINE uint tileHeight(VITRUM_PARAMS p) { return p.tile.w; }
-VITRUM_INLINE uint maxDepth(VITRUM_PARAMS p) { return p.limits.x; }
-// Loop steps a SIMD group may run in one dispatch (shaders/trace.comp).
-VITRUM_INLINE uint iterationBudget(VITRUM_PARAMS p) { return p.limits.y; }
-VITRUM_INLINE uint lightCount(VITRUM_PARAMS p) { return p.counts.x; }
-VITRUM_INLINE uint textureCount(VITRUM_PARAMS p) { return p.counts.y; }
-// How many of cameraMedia and cameraMediaBehind hold objects.
-VITRUM_INLINE uint cameraMediaCount(VITRUM_PARAMS p) { return p.counts.z; }
-VITRUM_INLINE uint cameraMediaBehindCount(VITRUM_PARAMS p) { return p.counts.w; }
-VITRUM_INLINE uint fresnelModelOf(VITRUM_PARAMS p) { return p.models.x; }      // kFresnel*
-VITRUM_INLINE uint backgroundKindOf(VITRUM_PARAMS p) { return p.models.y; }    // kBackground*
-VITRUM_INLINE uint textureFilterOf(VITRUM_PARAMS p) { return p.models.z; }     // kFilter*
-// The spherical map's texture, or the cube's +x face's (then -x, +y, -y, +z, -z).
-VITRUM_INLINE uint backgroundTexture(VITRUM_PARAMS p) { return p.models.w; }
-// Whether glass hits look for touching surfaces of other glass objects (the scene has two).
-VITRUM_INLINE bool touchingProbeOn(VITRUM_PARAMS p) { return p.surfaceChecks.x != 0u; }
-// Whether glass may rest on an opaque surface (SceneFeatures::opaqueContactPossible).
-VITRUM_INLINE bool opaqueContactOn(VITRUM_PARAMS p) { return p.surfaceChecks.y != 0u; }
-// Whether opaque surfaces of two objects may coincide (SceneFeatures::coincidentOpaquePossible).
-VITRUM_INLINE bool coincidentOpaqueOn(VITRUM_PARAMS p) { return p.surfaceChecks.z != 0u; }
-VITRUM_INLINE float minWeight(VITRUM_PARAMS p) { return p.thresholds.x; }
-// The distance within which surfaces touch: 1e-5 of the scene's diagonal (SceneFeatures).
-VITRUM_INLINE float touchingDistance(VITRUM_PARAMS p) { return p.thresholds.y; }
-// Waechter and Binder's ray-origin offsets scaled to the scene (host/render_model/ray_offset.h): the
-// radius of the region around the origin where offsets are absolute, and that offset.
-VITRUM_INLINE float offsetRegion(VITRUM_PARAMS p) { return p.thresholds.z; }
-VITRUM_INLINE float offsetDistance(VITRUM_PARAMS p) { return p.thresholds.w; }
-// The root's entry (TraversalNode): node 0, or the one leaf of a scene of at most
-// kMaxLeafTriangles triangles.
-VITRUM_INLINE uint bvhRoot(VITRUM_PARAMS p) { return p.bvh.x; }
-// The unit normal of the surface the camera lies on, 0 if none: primary rays start off it on their
-// side (host/analysis/camera_surface.h), with cameraMedia in front and cameraMediaBehind behind.
-VITRUM_INLINE vec3 cameraSurfaceNormal(VITRUM_PARAMS p) { return vec3(p.cameraSurface); }
+#ifdef __cplusplus
+#define VITRUM_PARAM_SCALAR(type, name, member, lane) \
+    inline type name(const RenderParams& p) { return p.member.lane; }
+#define VITRUM_PARAM_FLAG(name, member, lane) \
+    inline bool name(const RenderParams& p) { return p.member.lane != 0u; }
+#define VITRUM_PARAM_VECTOR(name, member) \
+    inline vec3 name(const RenderParams& p) { return vec3(p.member); }
+VITRUM_RENDER_PARAM_LANES(VITRUM_PARAM_SCALAR, VITRUM_PARAM_FLAG, VITRUM_PARAM_VECTOR)
+#undef VITRUM_PARAM_SCALAR
+#undef VITRUM_PARAM_FLAG
+#undef VITRUM_PARAM_VECTOR
+#endif
 
 #ifdef __cplusplus
 inline void setCamera(RenderParams& p, vec3 position, float focal, vec3 x, vec3 y, vec3 z) {
