@@ -27,7 +27,7 @@ layout(set = 0, binding = kBindingObjectMedia, rgba32ui) uniform readonly uimage
 layout(std430, set = 0, binding = kBindingPixels) buffer Pixels { vec4 pixels[]; };
 layout(std430, set = 0, binding = kBindingStates) buffer States { uvec4 stateTexels[]; };  // TraceStates, see suspend.glsl
 layout(std430, set = 0, binding = kBindingStats) buffer Stats { uint stats[]; };
-layout(std430, set = 0, binding = kBindingPendingRays) buffer PendingRays { PendingRay pendingRays[]; };  // trace.comp's pendingRayIndex
+layout(std430, set = 0, binding = kBindingPendingRays) buffer PendingRays { PendingRay pendingRays[]; };  // pending_rays.glsl's pendingRayIndex
 layout(std430, set = 0, binding = kBindingTraversalStacks) buffer TraversalStacks { uint traversalStacks[]; };  // kTraversalStackSize a pixel
 
 #include "geometry_texels.glsl"  // fetchVec4, loadTraversalNode, loadTriangle

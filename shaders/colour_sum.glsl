@@ -7,7 +7,7 @@
 // would then round differently from run to run of the same scene in another configuration;
 // integer sums are the same in any order, so the image is bit for bit the same whichever lane
 // traced which ray, and whether the pixel was suspended or not. What a lane adds is one round of
-// shading's float sum (trace.comp's main loop: a round is a unit of one ray, the same whichever
+// shading's float sum (trace.comp's traceUnit: a round is a unit of one ray, the same whichever
 // lane runs it), truncated to a multiple of 2^-32: below any visible difference, and finer than
 // float's own rounding for every value above 2^-8. A term is clamped to [0, 2^32) and a sum past
 // 2^32 stays at the largest value; a negative or NaN term, which no valid scene makes, adds 0

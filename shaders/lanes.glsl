@@ -14,7 +14,7 @@
 // with a branch on each lane's mask (5% of a render's time); where subgroups are full
 // (kFullSubgroups) a butterfly of shuffles, max with the lane at distance 1, 2, 4, does the same
 // without a branch. A shuffle reads another lane, so there every lane of the subgroup must be
-// active where this is called: trace.comp's main loop and bvh.glsl's traversal keep their lanes
+// active where this is called: trace.comp's traceUnit and bvh.glsl's traversal keep their lanes
 // together until the last one is done.
 uint groupMax(uint value) {
 #ifdef VITRUM_NO_SUBGROUP_OPERATIONS

@@ -36,7 +36,7 @@ void placePendingRays(uint slot) {
     }
 }
 
-// The pending ray read this round, at its one load site (main's loop, after shading, where a lane
+// The pending ray read this round, at its one load site (traceUnit's loop, after shading, where a lane
 // that gives one of its rays to another reads it too, ray_sharing.glsl): on lavapipe every
 // storage-buffer load site is a loop over the lanes each round, whether a lane loads or not.
 uint gLoadIndex = 0u;
@@ -67,7 +67,7 @@ PendingRay readPendingRay(uint index) {
     return r;
 }
 
-// The pending ray at `index` goes on as st.ray: read at the round's end (main).
+// The pending ray at `index` goes on as st.ray: read at the round's end (traceUnit).
 void loadPendingRay(uint index) {
     gLoadIndex = index;
     gLoad = true;

@@ -4,8 +4,8 @@
 // lane whose pixel finished early idles through every later round of its group: on the glass
 // scenes the groups' lanes are busy in only half to two thirds of their steps
 // (docs/gpu-design.md). A pixel's pending rays (trace.comp's pendingRays, refractions whose
-// reflection went first) are whole ray trees of their own: once a round (trace.comp's main
-// loop), one idle lane takes the bottom pending ray of the lane that has the most (of those that
+// reflection went first) are whole ray trees of their own: once a round (trace.comp's
+// traceUnit), one idle lane takes the bottom pending ray of the lane that has the most (of those that
 // read no ray of their own that round), the one its owner would trace last, traces its tree, and
 // when it is done hands the tree's colour sum and steps back to the lane whose pixel the ray is
 // of (its owner). Pending rays the taker pushes
@@ -47,7 +47,7 @@ ColourSum gOwnColour = kNoColour;
 uint gOwnSteps = 0u;
 bool gGroupTook = false;  // some lane of the group took a ray: the same in every lane
 // The lane that gives a pending ray this round, plus one (0: none), the same in every lane. The
-// giver reads the ray at the round's one load site (trace.comp's main loop, where the lanes read
+// giver reads the ray at the round's one load site (trace.comp's traceUnit, where the lanes read
 // their own next rays), and handOver passes it to the taker by a shuffle.
 uint gGiver = 0u;
 bool gGives = false;     // this lane gives the ray it reads this round

@@ -16,12 +16,12 @@
 #include "touching.glsl"
 #include "ieee_vector_math.glsl"
 
-// What this round of shading (main's loop) adds to the pixel's colour: a float sum of a few
+// What this round of shading (traceUnit's loop) adds to the pixel's colour: a float sum of a few
 // terms, added to the fixed-point sum once at the round's end (colour_sum.glsl).
 vec3 gRoundColour = vec3(0.0);
 
 // The closest-hit traversal of st.ray is over: record the hit (triangle `tri`, material `m`, both
-// read by main) or take the background.
+// read by traceUnit) or take the background.
 void finishTrace(TriangleVertices tri, GpuMaterial m) {
     uint triangle = st.traversal.closest;
     // Beer-Lambert over the segment just travelled (render model: "Media: the IOR stack").

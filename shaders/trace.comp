@@ -1,5 +1,5 @@
 #version 460
-// The ray tree of docs/render-model.md, one pixel per invocation, for one tile of the image.
+// The ray tree of ../shared/docs/render-model.md, one pixel per invocation, for one tile of the image.
 //
 // lavapipe silently ends a shader's loops after 65,535 iterations of a SIMD group. So every loop
 // iteration of this kernel is one small counted step (one BVH node, one leaf, one triangle, or one
@@ -30,7 +30,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "colour_sum.glsl"
 #include "suspend.glsl"
 
-// Starts a unit: everything main's loop counts or carries for a pixel starts afresh, each
+// Starts a unit: everything traceUnit's loop counts or carries for a pixel starts afresh, each
 // module's state by its own reset (the tests compare the persistent kernel's statistics with
 // those of one unit an invocation).
 void startUnit() {

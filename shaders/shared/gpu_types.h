@@ -67,7 +67,7 @@ struct TriangleShading {
 };
 
 // ---- Materials ------------------------------------------------------------------------------
-// Material models, numbered like the course's MTL `shader N` (docs/render-model.md).
+// Material models, numbered like the course's MTL `shader N` (../shared/docs/render-model.md).
 VITRUM_CONST uint kMaterialNormal = 1u;
 VITRUM_CONST uint kMaterialLambert = 2u;
 VITRUM_CONST uint kMaterialPhong = 3u;  // opaque dielectric: Phong + Schlick-weighted reflection
