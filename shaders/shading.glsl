@@ -183,14 +183,10 @@ bool spawnsRays() {
 
 // The hit's children. The one traced next goes on at once as st.ray: the reflection (of a
 // mirror, a Phong surface with Schlick's weight, or glass), or through an index-matched glass
-// interface the same ray with the new medium stack. Only a glass hit's refraction, whose
-// reflection goes first, waits in the pending-ray stack. So the kernel has one place that stores
-// a pending ray: on lavapipe each store costs a loop over the lanes every round, whether a lane
-// stores or not. The order is the one of pushing both and popping the reflection at once.
-//
-// lavapipe runs the code of every material in every round, masked, so the materials share one
-// reflection: its IOR lookup, Fresnel term, direction and origin are worked out once, from the
-// normals on the incoming ray's side (an opaque hit's were turned so by finishTrace).
+// interface the same ray with the new medium stack; only a glass hit's refraction waits on the
+// pending-ray stack, so it has one store site (docs/gpu-design.md, "The ray tree"). The materials
+// share one reflection, from the normals on the incoming ray's side: lavapipe runs every
+// material's code every round (docs/gpu-design.md, "One shading round, fewer copies of its code").
 void scatter(GpuMaterial m) {
     uint model = materialModel(m);
     bool glass = usesMaterial(kMaterialGlass) && model == kMaterialGlass;

@@ -127,7 +127,8 @@ VITRUM_CONST uint kFilterNearest = 1u;
 // ---- Per-invocation trace state (storage buffers, one entry per pixel of a tile) ---------------
 // lavapipe stops any shader loop after 65,535 iterations, silently. trace.comp therefore runs
 // at most `iteration budget` counted steps per dispatch; a pixel that is not finished keeps its
-// whole state in these buffers and the next dispatch resumes it (docs/gpu-design.md).
+// whole state in these buffers and the next dispatch resumes it (docs/gpu-design.md, "One loop,
+// bounded, resumable").
 VITRUM_CONST uint kRayStackSize = 16u;    // most pending rays of the depth-first ray tree
 VITRUM_CONST uint kMaxMediumDepth = 4u;   // most media a ray can be inside at once (trace.comp unrolls for 4)
 
