@@ -1,5 +1,5 @@
 // What a ray that leaves the scene sees: a constant colour, a spherical (equirectangular) map or
-// a cube map, with the conventions of docs/render-model.md ("Background"); the same steps as
+// a cube map, with the conventions of ../shared/docs/render-model.md ("Background"); the same steps as
 // host/cpu/texture_sampling.h.
 #ifndef VITRUM_BACKGROUND_GLSL
 #define VITRUM_BACKGROUND_GLSL

@@ -9,12 +9,9 @@
 
 layout(set = 0, binding = kBindingParams, rgba32ui) uniform readonly uimageBuffer paramTexels;  // one RenderParams
 // The parameters and the scene's geometry, materials, lights and object media are storage texel
-// buffers of uvec4 texels (gpu_types.h: kTraversalNodeTexels and the others), read with imageLoad.
-// On lavapipe every storage-buffer access is a loop over the 8 lanes, with a branch a lane, while
-// a texel read is one 16-byte load a lane: texel buffers made the plain baseline kernel 2x faster
-// (docs/performance.md). And an imageLoad is compiled into the kernel, while a uniform texel
-// buffer's texelFetch is a call to a function of its own, around which every live vector register
-// is saved and restored: imageLoad made the kernel 3-12% faster (docs/gpu-design.md).
+// buffers of uvec4 texels (gpu_types.h: kTraversalNodeTexels and the others), read with imageLoad:
+// on lavapipe a texel read is one load a lane, not a loop over the lanes, and imageLoad, unlike
+// texelFetch, is compiled into the kernel (docs/gpu-design.md, "Data").
 layout(set = 0, binding = kBindingNodes, rgba32ui) uniform readonly uimageBuffer nodeTexels;
 layout(set = 0, binding = kBindingVertices, rgba32ui) uniform readonly uimageBuffer vertexTexels;
 layout(set = 0, binding = kBindingShading, rgba32ui) uniform readonly uimageBuffer shadingTexels;
@@ -27,14 +24,14 @@ layout(set = 0, binding = kBindingObjectMedia, rgba32ui) uniform readonly uimage
 layout(std430, set = 0, binding = kBindingPixels) buffer Pixels { vec4 pixels[]; };
 layout(std430, set = 0, binding = kBindingStates) buffer States { uvec4 stateTexels[]; };  // TraceStates, see suspend.glsl
 layout(std430, set = 0, binding = kBindingStats) buffer Stats { uint stats[]; };
-layout(std430, set = 0, binding = kBindingPendingRays) buffer PendingRays { PendingRay pendingRays[]; };  // trace.comp's pendingRayIndex
+layout(std430, set = 0, binding = kBindingPendingRays) buffer PendingRays { PendingRay pendingRays[]; };  // pending_rays.glsl's pendingRayIndex
 layout(std430, set = 0, binding = kBindingTraversalStacks) buffer TraversalStacks { uint traversalStacks[]; };  // kTraversalStackSize a pixel
 
 #include "geometry_texels.glsl"  // fetchVec4, loadTraversalNode, loadTriangle
 
 // The render parameters, read once at the start of main(). Not a uniform buffer: lavapipe
-// recompiles a kernel for the values of uniforms that decide branches ("inlining") at every
-// dispatch, several ms each for this kernel, and a kernel without a cache over half a second.
+// recompiles a kernel at every dispatch for the values of uniforms that decide branches
+// (docs/gpu-design.md, "Data", binding 0).
 RenderParams params;
 
 #include "render_params.glsl"  // its lanes by name

@@ -1,10 +1,9 @@
-// A resumable BVH traversal over the flattened nodes of shared/gpu_types.h.
-// The traversal's state is kept in the pixel's state `st` (trace_state.glsl) and its stack in
-// gStack, so that a dispatch can stop after any step and the next one resume it (suspend.glsl).
-// Its includer provides the scene's geometry (geometry_texels.glsl's nodeTexels and
-// vertexTexels), `params` (bvh.x, tuning, pass.w) and the constants kShadowRays, kTouchingProbe,
-// kOpaqueContact, kCoincidentOpaque, kResumable and kFullSubgroups: trace.comp's
-// (bindings.glsl, specialization.glsl), or a benchmark's own (bench/trace_only).
+// A resumable BVH traversal over the flattened nodes of shared/gpu_types.h: its state lives in
+// `st` (trace_state.glsl) and its stack in gStack, so that a dispatch can stop after any step and
+// the next one resume it (suspend.glsl). The includer provides nodeTexels and vertexTexels
+// (geometry_texels.glsl), `params` and the constants kShadowRays, kTouchingProbe, kOpaqueContact,
+// kCoincidentOpaque, kResumable and kFullSubgroups: trace.comp's (bindings.glsl,
+// specialization.glsl) or a benchmark's own (bench/trace_only).
 #ifndef VITRUM_BVH_GLSL
 #define VITRUM_BVH_GLSL
 
@@ -21,8 +20,8 @@ const uint kNoTriangle = 0xFFFFFFFFu;
 const uint kTraverseClosest = 0u;  // the closest hit (and touching.glsl's candidates, when collected)
 const uint kTraverseAny = 1u;      // any hit (shadow rays)
 
-// This pixel's BVH traversal stack, in private memory while the kernel runs: on lavapipe that is
-// cheaper than a storage buffer, whose every access loops over the lanes.
+// This pixel's traversal stack, in private memory: on lavapipe every storage-buffer access is a
+// loop over the lanes (docs/gpu-design.md, "Data").
 uint gStack[kTraversalStackSize];
 
 // A traversal stack entry is a node whose box the ray entered, as gpu_types.h's TraversalNode
@@ -65,11 +64,11 @@ void beginClosestTraversal() {
 // One interior node of a traversal: tests both children's boxes, keeps the nearer hit child in
 // `current` and pushes the farther one when both are. When neither is hit, the next entry comes
 // off the stack at once; `over` when the stack is empty. The stack's top is read before the node,
-// so that the two reads overlap and the next node's read waits for neither.
+// so that the two reads overlap.
 //
-// The far child is returned in `farEntry` for the caller to write to the free slot above the
-// top (as it was before the visit), and the top is raised only when it is pushed: the caller
-// stores it in every iteration of its loop, in every lane (traverse below says why).
+// The far child is returned in `farEntry` for the caller to store to the free slot above the top
+// (as it was before the visit), in every lane (traverse says why); the top is raised only when
+// it is pushed.
 void visitInteriorNode(inout uint current, inout uint top, inout bool over, out uint farEntry, vec3 direction,
                        BoxRay ray, float tMin, float tMax) {
     uint below = gStack[top == 0u ? 0u : top - 1u];
@@ -104,16 +103,13 @@ void visitInteriorNode(inout uint current, inout uint top, inout bool over, out 
 // loop until the group's last traversal is over, so that groupMax may read every lane (lanes.glsl).
 // `steps` is the group's count, the same in all its lanes on entry and on return. Each loop
 // iteration is one step: a triangle test, an interior node whose two children's boxes it tests
-// (in the manner of Aila and Laine 2009), or taking a leaf off the stack. Returns true when it is
-// over: the closest hit (or, for kTraverseAny, some hit) is st.traversal.closest, with its t in
-// tMax and its barycentrics. With the touching probe on, a closest-hit traversal also collects
-// the glass triangles within the touching distance beyond the closest hit (touching.glsl) in
-// st.candidates. Returns false when the budget ran
-// out first; the state is then back in `st` and a later call resumes it. A lane that is not
-// tracing returns true and leaves `st` as it was.
+// (Aila and Laine 2009), or taking a leaf off the stack. Returns true when it is over: the
+// closest hit (or, for kTraverseAny, some hit) is st.traversal.closest, with its t in tMax and its
+// barycentrics; with the touching probe on, st.candidates holds the glass triangles within the
+// touching distance beyond it (touching.glsl). Returns false when the budget ran out first; the
+// state is then back in `st` and a later call resumes it. A lane that is not tracing returns true
+// and leaves `st` as it was.
 //
-// The ray and the cursor live in locals while it runs, the stack in the private array gStack
-// (suspend.glsl saves it to traversalStacks[] only when the pixel is suspended mid-traversal).
 // Nodes are visited depth first, near child (by the split axis) first, as
 // host/bvh/bvh_traversal.cpp does, so both find the same closest triangle, ties included.
 bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
@@ -153,17 +149,11 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
         current = bvhRoot();
     }
     bool over = !tracing;
-    // Aila and Laine's "while-while": inner nodes until every lane of the SIMD group holds a leaf
-    // (or is done), then that leaf's triangles, so that one loop iteration is one kind of work.
-    // Every loop is written `if (c) do { ... } while (c)`: lavapipe tests a loop's exit at the end
-    // of its body, so a `while (c)` loop runs its whole body once more than its longest lane, with
-    // every lane masked off (docs/gpu-design.md: 12% of a primary-ray render), while the do-while
-    // runs it as often as its longest lane, and once, masked, when no lane enters it.
-    // lavapipe counts the group's iterations against its limit, not a lane's: lanes that finish
-    // a loop early wait for the others. So each inner loop adds the most iterations any lane ran
-    // in it, or one for a loop no lane enters, to `steps`, which stays the same in all lanes: the
-    // iterations the group ran. counters.loopSteps counts those this lane ran. The outer loop runs while
-    // some lane's traversal is not over, and a lane whose traversal is over waits in it.
+    // Aila and Laine's "while-while": nodes until every lane holds a leaf (or is done), then that
+    // leaf's triangles. Every loop is `if (c) do { ... } while (c)`, which lavapipe runs no more
+    // often than its longest lane (docs/gpu-design.md, "One loop, bounded, resumable"). `steps`
+    // gets each inner loop's group iterations (one where no lane enters), counters.loopSteps this
+    // lane's; a lane whose traversal is over waits in the outer loop until every lane's is.
     if (groupAny(!over) && steps < budget) do {
         steps += 1u;
         if (!over) counters.loopSteps += 1u;
@@ -175,14 +165,11 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
                 current = gStack[top];
             }
         }
-        // The node loop runs while some lane of the group needs a node (the same condition in
-        // every lane), and each iteration writes every lane's far child, or a 0 where the lane
-        // visits no node, to the free slot above its top. On lavapipe a lane's store to a private
-        // array at an index of its own is a branch a lane on the lanes' mask (store the new value
-        // or the old one): with the store in every lane the branches always go the same way,
-        // while a store made only by the lanes still in the loop follows which of them are, which
-        // the CPU cannot predict (docs/gpu-design.md). The iterations are the ones of a loop that
-        // every lane leaves for itself: as many as its longest lane's.
+        // Runs while some lane needs a node (as many iterations as its longest lane), and every
+        // iteration stores every lane's far child (0 where it visits none) above its top: lavapipe
+        // branches on the lanes' mask for each lane of a private-array store, and stored in every
+        // lane those branches always go the same way (docs/gpu-design.md, "The node loop in every
+        // lane").
         bool inNodes = !over && cursor >= leafEnd;
         uint nodeSteps = 0u;  // the group's
         if (groupAny(inNodes) && steps < budget) do {
@@ -241,11 +228,9 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
         counters.loopSteps += triangleSteps;
         steps += max(groupMax(triangleSteps), 1u);
     } while (groupAny(!over) && steps < budget);
-    // Suspended: the entry in hand goes back on the stack (pushes leave it a free slot). Stored
-    // in every lane, for the reason the node loop's store is (a lane that is not suspended
-    // writes its free slot, and one that does not trace has no stack to keep). Only the
-    // resumable kernel resumes a traversal: the first dispatch gives up a pixel whose budget ran
-    // out, and its stack with it (trace.comp), so there the store would run every round for nothing.
+    // Suspended: the entry in hand goes back on the stack (pushes leave it a free slot), stored in
+    // every lane as the node loop's store is (a lane not suspended writes only its free slot).
+    // Only the resumable kernel resumes a traversal; the first dispatch gives up such a pixel.
     if (kResumable) gStack[min(top, kTraversalStackSize - 1u)] = current;
     if (!tracing) return true;
     if (!over && current != kNoEntry) top += 1u;

@@ -1,5 +1,5 @@
-// Primary rays: the pinhole camera and the stratified jitter of docs/render-model.md, written to
-// give the same sample positions as host/render_model/sampling.h, bit for bit.
+// Primary rays: the pinhole camera and the stratified jitter of ../shared/docs/render-model.md,
+// written to give the same sample positions as host/render_model/sampling.h, bit for bit.
 #ifndef VITRUM_CAMERA_GLSL
 #define VITRUM_CAMERA_GLSL
 

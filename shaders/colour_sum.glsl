@@ -1,17 +1,10 @@
 // A pixel's colour as a sum that does not depend on the order of its terms: 64-bit fixed point
 // per channel, 32 bits of them below the binary point, kept as two uint words (no 64-bit integer
-// feature needed).
-//
-// Why: lanes of a SIMD group trace one another's pending rays (ray_sharing.glsl), so the rays
-// of a pixel finish in an order that depends on its neighbours and on the step budget. Float sums
-// would then round differently from run to run of the same scene in another configuration;
-// integer sums are the same in any order, so the image is bit for bit the same whichever lane
-// traced which ray, and whether the pixel was suspended or not. What a lane adds is one round of
-// shading's float sum (trace.comp's main loop: a round is a unit of one ray, the same whichever
-// lane runs it), truncated to a multiple of 2^-32: below any visible difference, and finer than
-// float's own rounding for every value above 2^-8. A term is clamped to [0, 2^32) and a sum past
-// 2^32 stays at the largest value; a negative or NaN term, which no valid scene makes, adds 0
-// (docs/render-model-decisions.md).
+// feature needed). Lanes trace one another's rays (ray_sharing.glsl), so a pixel's rays finish in
+// an order that depends on its neighbours and the budget; integer sums keep the image the same
+// bit for bit (docs/gpu-design.md, "The ray tree"). A term is one round of shading's float sum,
+// truncated to a multiple of 2^-32 and clamped to [0, 2^32); a sum saturates; a negative or NaN
+// term adds 0 (docs/render-model-decisions.md, "Pixel sanitising (GPU)").
 #ifndef VITRUM_COLOUR_SUM_GLSL
 #define VITRUM_COLOUR_SUM_GLSL
 

@@ -1,10 +1,9 @@
 // dot, cross, length, normalize and mix written out in the operations and the order in which GLM,
-// and so the CPU reference, computes them. A driver may evaluate GLSL's built-ins as it likes
-// (NVIDIA's dot rounds as if fused), while a single multiply or add is an IEEE operation that no
-// kernel may fuse with another (host/gpu/spirv_float_semantics.h): written out, they round as the
-// CPU's do, and a ray that grazes an edge takes the same branch on both backends. A square root
-// and a division may still round differently where a device is allowed to (Vulkan: 2.5 ulp for a
-// division).
+// and so the CPU reference, computes them: a driver may evaluate GLSL's built-ins as it likes,
+// while a single multiply or add is an IEEE operation that no kernel may fuse with another
+// (host/gpu/spirv_float_semantics.h). So a ray that grazes an edge takes the same branch on both
+// backends; a square root and a division may still round differently where Vulkan allows it
+// (docs/gpu-design.md, "Arithmetic as the CPU does it").
 #ifndef VITRUM_IEEE_VECTOR_MATH_GLSL
 #define VITRUM_IEEE_VECTOR_MATH_GLSL
 

@@ -10,20 +10,17 @@
 #extension GL_KHR_shader_subgroup_shuffle : require
 #endif
 
-// The largest `value` of the active lanes. lavapipe's subgroupMax is a loop over the 8 lanes
-// with a branch on each lane's mask (5% of a render's time); where subgroups are full
-// (kFullSubgroups) a butterfly of shuffles, max with the lane at distance 1, 2, 4, does the same
-// without a branch. A shuffle reads another lane, so there every lane of the subgroup must be
-// active where this is called: trace.comp's main loop and bvh.glsl's traversal keep their lanes
-// together until the last one is done.
+// The largest `value` of the active lanes. lavapipe's subgroupMax is a loop over the lanes with a
+// branch each, so where subgroups are full (kFullSubgroups) a butterfly of shuffles does it
+// (docs/gpu-design.md, "Group maxima by shuffles"). A shuffle reads another lane: there every lane
+// of the subgroup must call this (trace.comp's traceUnit and bvh.glsl keep them together).
 uint groupMax(uint value) {
 #ifdef VITRUM_NO_SUBGROUP_OPERATIONS
     return value;
 #else
     if (!kFullSubgroups) return subgroupMax(value);
-    // Written out, not a loop (whose iterations lavapipe would count against its limit), for
-    // subgroups of up to 128 lanes: gl_SubgroupSize is a constant where the driver compiles the
-    // kernel, so the rounds past it fold away.
+    // Written out, not a loop (lavapipe would count its iterations against its limit), for up to
+    // 128 lanes: gl_SubgroupSize is a compile-time constant to the driver, so extra rounds fold away.
     if (gl_SubgroupSize > 1u) value = max(value, subgroupShuffleXor(value, 1u));
     if (gl_SubgroupSize > 2u) value = max(value, subgroupShuffleXor(value, 2u));
     if (gl_SubgroupSize > 4u) value = max(value, subgroupShuffleXor(value, 4u));

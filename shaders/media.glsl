@@ -25,8 +25,6 @@ vec3 mediumAttenuation(PendingRay r) {
 }
 
 // The medium stack, written without loops: every loop iteration counts against lavapipe's limit.
-// Removes the innermost entry of `object` (normally the top); a ray leaving an object it is not
-// inside (an open or badly wound mesh) keeps its stack, and that is counted.
 // The innermost place of `object` in the stack, or `count` where the ray is not inside it.
 uint innermostMedium(uvec4 media, uint count, uint object) {
     uint found = count;
@@ -37,6 +35,8 @@ uint innermostMedium(uvec4 media, uint count, uint object) {
     return found;
 }
 
+// Removes the innermost entry of `object` (normally the top); a ray leaving an object it is not
+// inside (an open or badly wound mesh) keeps its stack, and that is counted.
 void leaveMedium(inout uvec4 media, inout uint count, uint object) {
     uint found = innermostMedium(media, count, object);
     if (found == count) {

@@ -13,13 +13,10 @@
 uint gBottom = 0u;
 
 // Where entry `entry` of this pixel's pending rays is: entry-major, so that the deeper entries,
-// which few pixels reach, lie together. In the first dispatch pending rays are the invocation's,
-// kept only while it traces a unit (a pixel it gives up starts again from nothing), so the
-// persistent kernel's invocations, 8 times fewer than a tile's pixels, use 8 times less memory
-// and use it again unit after unit. The resumable kernel keeps them by slot, across dispatches.
-// Memory matters beyond the caches: a fresh buffer's first touch of a page is a page fault,
-// about 10 us on the machines of docs/performance.md; by slot, with a slot's entries together,
-// a render of bubble at 640x480 took 7,000 more faults and 27% longer (docs/gpu-design.md).
+// which few pixels reach, lie together. In the first dispatch they are the invocation's, needed
+// only while it traces a unit (a pixel it gives up starts again from nothing), so the persistent
+// kernel touches 8 times fewer pages; the resumable kernel keeps them by slot, across dispatches
+// (docs/gpu-design.md, "Page faults").
 uint gPendingPlace = 0u;
 uint gPendingStride = 0u;
 uint pendingRayIndex(uint entry) { return entry * gPendingStride + gPendingPlace; }
@@ -36,16 +33,16 @@ void placePendingRays(uint slot) {
     }
 }
 
-// The pending ray read this round, at its one load site (main's loop, after shading, where a lane
-// that gives one of its rays to another reads it too, ray_sharing.glsl): on lavapipe every
-// storage-buffer load site is a loop over the lanes each round, whether a lane loads or not.
+// The pending ray read this round, at its one load site (traceUnit's loop, after shading; a lane that
+// gives a ray to another reads it there too): on lavapipe every storage-buffer load site is a
+// loop over the lanes each round, whether a lane loads or not.
 uint gLoadIndex = 0u;
 bool gLoad = false;
 
-// A pending ray in the buffer. On lavapipe each member moved is a loop over the 8 lanes, with a
-// branch on each lane's mask: with a medium stack of one, the ray's one medium travels in its
-// weight's unused .w (a child's weight.w is 0, and media beyond the first are 0), so that three
-// members are moved instead of four.
+// A pending ray in the buffer. On lavapipe each member moved is a loop over the lanes, so with a
+// medium stack of one the ray's medium travels in its weight's unused .w (a child's weight.w is
+// 0, and media beyond the first are 0): three members, not four (docs/gpu-design.md, "Three
+// members a pending ray with a medium stack of one").
 void storePendingRay(uint index, PendingRay r) {
     if (kMediumStackDepth > 1u) {
         pendingRays[index] = r;
@@ -67,7 +64,7 @@ PendingRay readPendingRay(uint index) {
     return r;
 }
 
-// The pending ray at `index` goes on as st.ray: read at the round's end (main).
+// The pending ray at `index` goes on as st.ray: read at the round's end (traceUnit).
 void loadPendingRay(uint index) {
     gLoadIndex = index;
     gLoad = true;

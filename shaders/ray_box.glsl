@@ -16,8 +16,8 @@ BoxRay makeBoxRay(vec3 origin, vec3 direction) {
 }
 
 // max(distance, bound) and min(distance, bound) for a bound that is never NaN, as selects: a NaN
-// distance fails the comparison and gives the bound. (GLSL's max and min come with NaN fix-ups on
-// lavapipe: 7-9% of a render's time, docs/gpu-design.md.)
+// distance fails the comparison and gives the bound. GLSL's max and min come with NaN fix-ups on
+// lavapipe (docs/gpu-design.md, "What makes it fast on lavapipe").
 float raiseTo(float distance, float bound) { return distance > bound ? distance : bound; }
 float lowerTo(float distance, float bound) { return distance < bound ? distance : bound; }
 
@@ -25,10 +25,8 @@ float lowerTo(float distance, float bound) { return distance < bound ? distance 
 // an axis whose slab distance is NaN (0 * inf: the ray runs in the plane of a face) does not
 // constrain the segment, and the exit distance is widened by 1 + 2 gamma(3) so that rounding never
 // culls a triangle lying on a face of the box (pbrt-v4, "Robust Ray-Bounds Intersections").
-// Which of a slab's planes is nearer follows from the direction's sign alone: subtracting the
-// origin and multiplying by a positive number keep the planes' order, a negative one reverses
-// it, and an infinite one gives a NaN distance only on a plane through the origin, which then
-// drops out of the bounds it is folded into one at a time.
+// A slab's near plane follows from the direction's sign alone; an infinite inverse direction gives
+// a NaN distance only on a plane through the origin, which drops out of the bound it is folded into.
 bool hitsBox(vec3 boxMin, vec3 boxMax, BoxRay ray, float tMin, float tMax) {
     const float kFarScale = 1.00000036;
     vec3 t0 = (boxMin - ray.origin) * ray.inverseDirection;

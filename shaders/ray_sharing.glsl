@@ -1,29 +1,20 @@
-// Lanes whose pixel is done take pending rays from the other lanes of their subgroup.
-//
-// lavapipe runs the 8 lanes of a SIMD group in lock step until the last of them is done, so a
-// lane whose pixel finished early idles through every later round of its group: on the glass
-// scenes the groups' lanes are busy in only half to two thirds of their steps
-// (docs/gpu-design.md). A pixel's pending rays (trace.comp's pendingRays, refractions whose
-// reflection went first) are whole ray trees of their own: once a round (trace.comp's main
-// loop), one idle lane takes the bottom pending ray of the lane that has the most (of those that
-// read no ray of their own that round), the one its owner would trace last, traces its tree, and
-// when it is done hands the tree's colour sum and steps back to the lane whose pixel the ray is
-// of (its owner). Pending rays the taker pushes
-// meanwhile can be taken in turn; they are of the same owner. Everything moves between lanes by
-// shuffles, never through memory (handOver says why).
+// Lanes whose pixel is done take pending rays from the other lanes of their subgroup, since a
+// SIMD group runs until its last lane is done (docs/gpu-design.md, "Rays, not pixels, for the idle
+// lanes"). A pending ray (a refraction whose reflection went first) is a whole ray tree: once a
+// round, one idle lane takes the bottom pending ray of the lane with the most (of those that read
+// no ray of their own that round), traces its tree, and hands its colour sum and steps back to
+// the lane whose pixel it is (its owner). Rays the taker pushes meanwhile, of the same owner, can
+// be taken in turn. Everything moves between lanes by shuffles (handOver says why).
 //
 // Nothing of the image or the statistics depends on who traces a ray: the colour is a sum in
-// fixed point (colour_sum.glsl), the same in any order; a taken ray's pending rays start at the
-// index it had in its owner's stack, so the stack's capacity cuts the same refractions; its
-// counters go to the lane that traced it and are summed with all the others; its steps go back
-// to its owner, so max_pixel_loop_steps is a pixel's steps whoever ran them. The only thing that
-// does depend on it is how many steps the group runs (group_loop_steps), which is the point.
+// fixed point (colour_sum.glsl); a taken ray's pending rays start at its index in its owner's
+// stack, so the capacity cuts the same refractions; its counters are summed with all the others;
+// its steps go back to its owner. Only group_loop_steps depends on it, which is the point.
 //
-// Only the first dispatch of a tile shares (the resumable kernel's state holds no owner), and
-// only where subgroups are full (every lane takes part in the shuffles). A group that is cut
-// by the step budget after some lane took a ray gives up all its pixels, finished or not: a
-// taken tree may be unfinished, or its rays counted by a lane whose own pixel is done. The
-// resumable kernel then traces them from their start, as every given-up pixel.
+// Only the first dispatch shares (the resumable kernel's state holds no owner), and only where
+// subgroups are full. A group cut by the budget after some lane took a ray gives up all its
+// pixels, finished or not: a taken tree may be unfinished, or counted by a lane whose own pixel
+// is done.
 #ifndef VITRUM_RAY_SHARING_GLSL
 #define VITRUM_RAY_SHARING_GLSL
 
@@ -47,7 +38,7 @@ ColourSum gOwnColour = kNoColour;
 uint gOwnSteps = 0u;
 bool gGroupTook = false;  // some lane of the group took a ray: the same in every lane
 // The lane that gives a pending ray this round, plus one (0: none), the same in every lane. The
-// giver reads the ray at the round's one load site (trace.comp's main loop, where the lanes read
+// giver reads the ray at the round's one load site (trace.comp's traceUnit, where the lanes read
 // their own next rays), and handOver passes it to the taker by a shuffle.
 uint gGiver = 0u;
 bool gGives = false;     // this lane gives the ray it reads this round
@@ -66,10 +57,9 @@ void resetRaySharing() {
 }
 
 #ifndef VITRUM_NO_SUBGROUP_OPERATIONS
-// Serves one idle lane: called once a round by every lane of the subgroup, after shading.
+// Serves one idle lane a round (more gained little: docs/gpu-design.md, "Rays, not pixels, for the
+// idle lanes"); called once a round by every lane of the subgroup, after shading.
 // `canTake`: the lane has a slot of its own for the pending rays of a taken tree (it has a pixel).
-// (Serving two or three lanes a round cut the group steps of geospheres_5x5_glass by only 2.6 and
-// 3.3% more, for more work every round: docs/gpu-design.md.)
 void shareRays(bool canTake) {
     uint self = gl_SubgroupInvocationID;
     bool idle = st.phase == kPhaseDone;
@@ -131,10 +121,10 @@ void shareRays(bool canTake) {
     }
 }
 
-// Hands the ray the giver read (`loaded`, in the giver's lane) to the taker, by shuffles: no
-// invocation reads memory another wrote, which would need a barrier, and Mesa 25.0's lavapipe
-// runs a subgroup barrier as a workgroup's, losing invocations (docs/gpu-design.md, "Two
-// drivers"). Called once a round by every lane, after the round's read of pending rays.
+// Hands the ray the giver read (`loaded`, in the giver's lane) to the taker, by shuffles: reading
+// memory another invocation wrote would need a barrier, which Mesa 25.0's lavapipe runs as a
+// workgroup's (docs/gpu-design.md, "Two drivers"). Called once a round by every lane, after the
+// round's read of pending rays.
 void handOver(inout PendingRay loaded) {
     if (gGiver == 0u) return;
     uint giver = gGiver - 1u;

@@ -12,12 +12,10 @@
 // of an 8x8 block of the tile's part inside the image; elsewhere a workgroup traces its own block
 // and there is one unit, its own.
 //
-// Which unit: lavapipe splits a dispatch's workgroups, in order, into one run of consecutive
-// workgroups a thread (Mesa's lp_cs_tpool), so a thread whose run covers the glass works on while
-// the other waits. Where subgroups are full, each subgroup instead takes the dispatch's next unit
-// from a counter: the threads take turns through the tile, each near the other, and a unit is the
-// same pixels whichever thread takes it (so are the images and statistics). The persistent
-// kernel's subgroups go on taking units (main), so that a thread that is ahead takes more of them.
+// lavapipe gives each thread a fixed run of consecutive workgroups (Mesa's lp_cs_tpool), so where
+// subgroups are full each subgroup takes the next unit from a counter instead, and the threads
+// share every part of the tile; a unit is the same pixels whichever thread takes it
+// (docs/gpu-design.md, "A dispatch on lavapipe's threads").
 uvec2 tileBlocks() {
     uvec2 inside = min(uvec2(tileWidth(), tileHeight()), uvec2(imageWidth(), imageHeight()) - min(uvec2(tileX(), tileY()), uvec2(imageWidth(), imageHeight())));
     return (inside + gl_WorkGroupSize.xy - 1u) / gl_WorkGroupSize.xy;
@@ -46,9 +44,8 @@ uint takeUnit() {
 }
 
 // This invocation's pixel in `unit`, relative to the tile. A block is walked in Morton order, so
-// that the 8 lanes of a lavapipe SIMD group cover 4x2 pixels rather than a row of 8: nearer pixels
-// send nearer rays, which visit more of the same BVH nodes, and the group's loops run fewer
-// iterations (docs/gpu-design.md).
+// that the 8 lanes of a lavapipe SIMD group cover 4x2 pixels rather than a row of 8: nearer rays
+// visit more of the same nodes (docs/gpu-design.md, "What makes it fast on lavapipe").
 uvec2 tilePixel(uint unit) {
     uvec2 block = gl_WorkGroupID.xy;
     uint i = gl_LocalInvocationIndex;
@@ -73,10 +70,10 @@ const bool kPersistent = kPersistentSubgroups && kFullSubgroups && !kResumable;
 const bool kPersistent = false;
 #endif
 
-// lavapipe counts a subgroup's loop iterations over all the units it traces: their steps, at
-// most about 20 more a unit that the count misses (docs/gpu-design.md), the loop over the units
-// and, once, the statistics' loops. A unit is counted for 64 beyond its steps, and the limit is
-// kept 256 below lavapipe's.
+// lavapipe counts a subgroup's loop iterations over all the units it traces: their steps, the few
+// a unit runs beyond them, the loop over the units and the statistics' loops. A unit is counted
+// for 64 beyond its steps and the limit kept 256 below lavapipe's (docs/gpu-design.md, "One loop,
+// bounded, resumable", point 2).
 const uint kUnitIterationsBeyondSteps = 64u;
 const uint kDriverLoopIterations = 65535u - 256u;
 

@@ -16,12 +16,12 @@
 #include "touching.glsl"
 #include "ieee_vector_math.glsl"
 
-// What this round of shading (main's loop) adds to the pixel's colour: a float sum of a few
+// What this round of shading (traceUnit's loop) adds to the pixel's colour: a float sum of a few
 // terms, added to the fixed-point sum once at the round's end (colour_sum.glsl).
 vec3 gRoundColour = vec3(0.0);
 
 // The closest-hit traversal of st.ray is over: record the hit (triangle `tri`, material `m`, both
-// read by main) or take the background.
+// read by traceUnit) or take the background.
 void finishTrace(TriangleVertices tri, GpuMaterial m) {
     uint triangle = st.traversal.closest;
     // Beer-Lambert over the segment just travelled (render model: "Media: the IOR stack").
@@ -183,14 +183,10 @@ bool spawnsRays() {
 
 // The hit's children. The one traced next goes on at once as st.ray: the reflection (of a
 // mirror, a Phong surface with Schlick's weight, or glass), or through an index-matched glass
-// interface the same ray with the new medium stack. Only a glass hit's refraction, whose
-// reflection goes first, waits in the pending-ray stack. So the kernel has one place that stores
-// a pending ray: on lavapipe each store costs a loop over the lanes every round, whether a lane
-// stores or not. The order is the one of pushing both and popping the reflection at once.
-//
-// lavapipe runs the code of every material in every round, masked, so the materials share one
-// reflection: its IOR lookup, Fresnel term, direction and origin are worked out once, from the
-// normals on the incoming ray's side (an opaque hit's were turned so by finishTrace).
+// interface the same ray with the new medium stack; only a glass hit's refraction waits on the
+// pending-ray stack, so it has one store site (docs/gpu-design.md, "The ray tree"). The materials
+// share one reflection, from the normals on the incoming ray's side: lavapipe runs every
+// material's code every round (docs/gpu-design.md, "One shading round, fewer copies of its code").
 void scatter(GpuMaterial m) {
     uint model = materialModel(m);
     bool glass = usesMaterial(kMaterialGlass) && model == kMaterialGlass;

@@ -1,16 +1,10 @@
 // Adds invocations' counters to stats[] (indices of shared/trace_statistics.h): `sums` holds the
 // counters 0 .. kStatFirstMax - 1 in index order (sumsOf), `maxima` the ones from kStatFirstMax on.
 //
-// On lavapipe every atomic is a loop over the 8 lanes of a SIMD group, run in full even when no
-// lane is active, and adding 22 counters so took about 10% of a primary-ray render. So the
-// counters are first summed over the subgroup, and then each active lane adds a different one:
-// one atomic does the work of 8 (three for all the sums, one for the maxima).
-//
-// lavapipe's subgroupAdd is a loop over the lanes for each component (23 of them): summing so
-// cost about a tenth of a primary-ray render. Where the pipeline guarantees full subgroups
-// (kFullSubgroups), a butterfly of shuffles does the sums instead, three rounds of adding the lane
-// at distance 1, 2, 4 on lavapipe (docs/gpu-design.md). A shuffle reads another lane, so then
-// every lane of the subgroup must call this, those without a pixel with zeros (trace.comp's main).
+// On lavapipe every atomic and every subgroupAdd is a loop over the lanes, so the counters are
+// summed over the subgroup, by a butterfly of shuffles where subgroups are full (kFullSubgroups),
+// and each lane then adds a different one (docs/gpu-design.md, "Data", binding 11). A shuffle
+// reads another lane: there every lane must call this, those without a pixel with zeros (main).
 #ifndef VITRUM_STATISTICS_GLSL
 #define VITRUM_STATISTICS_GLSL
 

@@ -8,7 +8,7 @@
 // sum their counts by a butterfly as the statistics do. Every lane writes what it saw.
 //
 // With kSubgroupBarrier each round also has a subgroup barrier: the minimal kernel of the Mesa 25
-// lavapipe defect in docs/gpu-design.md ("Two drivers"), which trace.comp no longer needs.
+// lavapipe defect in docs/gpu-design.md ("Two drivers"); trace.comp has no barrier.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require

@@ -1,18 +1,11 @@
-// Pixels that need more than one dispatch (trace.comp's main).
+// Pixels that need more than one dispatch. The first dispatch runs the kernel built without
+// kResumable (a resumable state stays live, lane-masked, through the whole loop) and gives up a
+// pixel not done within the budget (kSlotRestart); the resumable kernel starts those afresh, and
+// suspends and resumes them: their TraceState in stateTexels[], the used part of their traversal
+// stack in traversalStacks[] (docs/gpu-design.md, "One loop, bounded, resumable", point 3).
 //
-// The first dispatch of a tile runs the kernel built without kResumable: a pixel that is not done
-// within the step budget is given up, and its slot says so (kSlotRestart). Keeping a resumable
-// state costs every pixel, also those that never suspend: on lavapipe the saved state is live,
-// lane-masked, through the whole loop (measured: the first dispatch runs 5-15% faster
-// without it). The host then dispatches the resumable kernel until the tile is done: it starts
-// the given-up pixels afresh, and suspends and resumes them, their TraceState as
-// kTraceStateTexels uvec4s in stateTexels[] and the used part of their BVH traversal stack in
-// traversalStacks[].
-//
-// On lavapipe every storage-buffer access is a loop over the 8 lanes of a SIMD group that runs
-// whether or not a lane is active, and code under a false condition runs too (masked). So each
-// copy goes through a private array and one loop whose trip count is zero unless a lane of the
-// group copies, not 16 accesses a texel apart.
+// On lavapipe every storage-buffer access is a loop over the lanes, even when no lane is active:
+// each copy is one loop, through a private array, whose trip count is zero unless a lane copies.
 #ifndef VITRUM_SUSPEND_GLSL
 #define VITRUM_SUSPEND_GLSL
 
@@ -23,11 +16,9 @@
 
 uvec4 gStateTexels[kTraceStateTexels];
 
-// A slot's status is its pixel's alpha (pixels[slot].w), written with the pixel by every
-// dispatch that traces it: so the first dispatch writes nothing else of a slot, and touches no
-// page of the state buffer. A fresh buffer's every first touch of a page is a page fault, about
-// 10 us on the machines of docs/performance.md. The mark was once one word of the slot's 256
-// bytes of state: a fault every 16 pixels, 13% of bubble's render at 640x480 (docs/gpu-design.md).
+// A slot's status is its pixel's alpha (pixels[slot].w), written with the pixel by every dispatch
+// that traces it: so the first dispatch touches no page of the state buffer, each first touch of
+// a page being a page fault (docs/gpu-design.md, "Page faults").
 const float kSlotRestart = 0.0;    // given up by the first dispatch: start it again
 const float kSlotDone = 1.0;       // finished, its colour in .xyz: later dispatches skip it
 const float kSlotSuspended = 2.0;  // suspended by the resumable kernel: its state in stateTexels

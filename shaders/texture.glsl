@@ -9,8 +9,8 @@
 
 #include "ieee_vector_math.glsl"
 
-// GLSL leaves % undefined for a negative operand (C++ truncates; NVIDIA's driver gave other rows
-// for v > 1, where 1 - v is negative), so a texel left of 0 is counted from the right end.
+// GLSL leaves % undefined for a negative operand (C++ truncates), so a texel left of 0 is counted
+// from the right end (docs/other-devices.md).
 int addressTexel(int i, int size, bool wrap) {
     if (!wrap) return clamp(i, 0, size - 1);
     return i >= 0 ? i % size : (size - 1) - (-(i + 1)) % size;

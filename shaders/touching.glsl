@@ -1,15 +1,12 @@
-// Touching glass surfaces (docs/render-model-decisions.md, "Touching objects"), found during the
-// closest-hit traversal itself instead of by a second traversal of the ray over (t - e, t + e)
-// after a glass hit: a probe cost almost as much as a ray (it descends from the root), and half
-// of water_glass's render time.
+// Touching glass surfaces (docs/render-model-decisions.md, "Touching objects"), collected during
+// the closest-hit traversal rather than by the CPU reference's second traversal over
+// (t - e, t + e), which costs almost as much as a ray (docs/gpu-design.md, "The ray tree").
 //
-// While the closest-hit traversal runs, every glass triangle it hits closer than the nearest hit
-// so far plus e is a *candidate*: four slots (xyzw) of an object (| entering << 31) and the
-// nearest t at which the ray crosses one of its glass triangles. The traversal culls boxes
-// against the nearest hit plus e, so it meets every such triangle; it finds the same nearest hit
-// as before, since the extra triangles all lie beyond it. A slot whose t is no longer below the
-// nearest hit plus e is free. At a glass hit, selectTouching keeps the candidates of other objects
-// than the hit's: the same surfaces the probe found, since every one lies at or beyond t.
+// Every glass triangle the traversal hits below the nearest hit so far plus e is a *candidate*:
+// four slots (xyzw) of an object (| entering << 31) and its nearest crossing t; a slot whose t is
+// no longer below that limit is free. Boxes are culled against the same limit, so no candidate is
+// missed and the nearest hit is unchanged. At a glass hit, selectTouching keeps the candidates of
+// other objects than the hit's: the surfaces the CPU's probe finds, since all lie at or beyond t.
 #ifndef VITRUM_TOUCHING_GLSL
 #define VITRUM_TOUCHING_GLSL
 

@@ -1,21 +1,17 @@
 #version 460
-// The ray tree of docs/render-model.md, one pixel per invocation, for one tile of the image.
+// The ray tree of ../shared/docs/render-model.md, one pixel per invocation, for one tile of the image.
 //
-// lavapipe silently ends a shader's loops after 65,535 iterations of a SIMD group. So every loop
-// iteration of this kernel is one small counted step (one BVH node, one leaf, one triangle, or one
-// round of shading, see main), counted for the group (bvh.glsl's traverse). A dispatch runs at most
-// `iterationBudget()` steps per group and unit of pixels. The first dispatch of a tile gives up the
-// pixels that are not done by then; the resumable build of this kernel (kResumable) restarts them
-// and keeps their state between its dispatches (suspend.glsl), and the host dispatches it until
-// every pixel of the tile is done. Nothing recurses. In the first dispatch, where subgroups are
-// full, a lane whose pixel is done takes pending rays of the other lanes of its group
-// (ray_sharing.glsl), and on a device that runs on the CPU a subgroup goes on to the tile's next
-// unit of pixels when its own are done (main).
+// lavapipe silently ends a SIMD group's loops after 65,535 iterations, so every loop iteration is
+// one counted step (a BVH node, a leaf, a triangle, or a round of shading) and a dispatch runs at
+// most iterationBudget() of them per group and unit of pixels. The first dispatch gives up
+// the pixels not done by then; the resumable build (kResumable, suspend.glsl) restarts them and
+// keeps their state until the tile is done (docs/gpu-design.md, "One loop, bounded, resumable").
+// Idle lanes take their group's pending rays (ray_sharing.glsl); on a CPU device a subgroup goes
+// on to the tile's next unit (main, schedule.glsl).
 #extension GL_GOOGLE_include_directive : require
-// The default build uses subgroup operations: to count the SIMD group's loop iterations
-// (lanes.glsl) and to sum its statistics over each subgroup before adding them up atomically
-// (statistics.glsl). The build with VITRUM_NO_SUBGROUP_OPERATIONS (trace_without_subgroups.spv.h)
-// is for devices without subgroup arithmetic and ballots.
+// Subgroup operations count the group's iterations (lanes.glsl) and sum the statistics
+// (statistics.glsl); VITRUM_NO_SUBGROUP_OPERATIONS builds trace_without_subgroups.spv.h for
+// devices without subgroup arithmetic and ballots.
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -30,9 +26,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "colour_sum.glsl"
 #include "suspend.glsl"
 
-// Starts a unit: everything main's loop counts or carries for a pixel starts afresh, each
-// module's state by its own reset (the tests compare the persistent kernel's statistics with
-// those of one unit an invocation).
+// Starts a unit: everything traceUnit's loop counts or carries for a pixel starts afresh, each
+// module's state by its own reset, so a persistent subgroup's units count as separate ones would.
 void startUnit() {
     counters = noCounters();
     gRoundColour = vec3(0.0);
@@ -45,9 +40,8 @@ void startUnit() {
 uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
     uvec2 local = tilePixel(unit);
     uvec2 pixel = uvec2(tileX(), tileY()) + local;
-    // An invocation has a pixel to trace when it is inside the tile and the image and (in the
-    // resumable kernel) the pixel is not done yet. One without returns at once, except where the
-    // statistics are summed by shuffles (kFullSubgroups, statistics.glsl), which read every lane:
+    // A pixel inside the tile and the image, and (resumable kernel) not done yet. An invocation
+    // without one returns at once, except with kFullSubgroups, where shuffles read every lane:
     // it then runs no step and counts nothing.
     bool hasPixel = local.x < tileWidth() && local.y < tileHeight() && pixel.x < imageWidth() && pixel.y < imageHeight();
     if (!hasPixel && !kFullSubgroups) return 0u;
@@ -61,22 +55,16 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
     }
     if (!hasPixel) st.phase = kPhaseDone;
 
-    // lavapipe runs 8 invocations in lock step and executes both sides of every branch under a
-    // mask, so a loop iteration costs its whole body, whatever phase each pixel is in. One
-    // iteration therefore runs one traversal (a loop of its own that walks only the BVH) and then
-    // takes the pixel through every shading phase that is due, in the order they follow each
-    // other, up to the start of the next traversal: each ray of the tree costs one iteration of
-    // shading code, not one per phase. Every loop counts against one budget of steps below
-    // lavapipe's 65,535 iterations, which it counts for the SIMD group, not the lane: `steps` is
-    // the group's count, the same in all its lanes at the top of this loop. The loop is a
-    // do-while, as bvh.glsl's are: a while loop would run its body once more with every lane
-    // masked off.
+    // lavapipe runs both sides of every branch, masked, so an iteration costs its whole body: one
+    // round runs one traversal, then every shading phase due up to the next traversal, so a ray
+    // costs one round of shading, not one per phase. `steps` counts the group's iterations, as the
+    // driver's limit does, the same in all lanes here; the loop is a do-while, as bvh.glsl's are
+    // (docs/gpu-design.md, "One loop, bounded, resumable").
     uint budget = iterationBudget();
     uint steps = 0u;
     if (st.phase == kPhaseStartSample) startSample(pixel);
-    // The loop runs while some lane of the group has a pixel that is not done; a lane that is
-    // done waits in it, as the traversal's lanes do (bvh.glsl), so that every lane reaches the
-    // groupMax calls. A lane whose traversal the budget stopped goes no further: the loop ends.
+    // Runs while some lane's pixel is not done; a lane that is done waits in it, so that every
+    // lane reaches the groupMax calls. A traversal the budget stopped ends the loop.
     bool working = st.phase != kPhaseDone;
     bool busy = working;
     if (groupAny(busy) && steps < budget) do {
@@ -102,9 +90,8 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
             if (st.phase == kPhaseNextLight) nextLight(m);  // may begin a shadow traversal
             if (spawnsRays() && st.phase == kPhaseScatter) scatter(m);
             if (st.phase == kPhaseNextRay) nextRay();  // begins a traversal or ends the sample
-            // A sample has ended here: with one sample a pixel (kSingleSample) that was the
-            // pixel's only one, and the round needs no camera code (main starts the first sample
-            // before the loop): the code of every phase runs in every round on lavapipe.
+            // With kSingleSample that was the pixel's only sample, so the round holds no camera
+            // code: lavapipe runs every phase's code in every round.
             if (st.phase == kPhaseStartSample) {
                 if (kSingleSample) st.phase = kPhaseDone;
                 else startSample(pixel);
@@ -161,9 +148,8 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
         c.loopLimitSuspected = steps < budget ? 1u : 0u;
     }
     if (!hasPixel) c = noCounters();
-    // The group's steps, once a group: a lane that finished early stopped counting, so the
-    // group's count is its lanes' largest. Against the lanes' own steps it says how full the SIMD
-    // groups were (docs/gpu-design.md).
+    // The group's steps, once a group: its lanes' largest, since a lane that finished early stopped
+    // counting (docs/gpu-design.md, "Statistics": how full the SIMD groups were).
     uint groupSteps = groupMax(steps);
     c.groupLoopSteps = firstLane() ? groupSteps : 0u;
     addSums(total, sumsOf(c));
@@ -178,10 +164,9 @@ void main() {
     uvec3 totalMaxima = uvec3(0u);
     uint units = tileUnits();
     uint iterations = 0u;  // lavapipe's count for this subgroup, bounded from above
-    // Every unit runs with the same budget (iterationBudget()), whichever subgroup takes it and
-    // whatever it traced before: so a unit gives up the same pixels, and counts the same, in
-    // every kernel. A subgroup takes another unit only while the driver's limit still holds a
-    // whole budget more.
+    // Every unit runs with the same budget, whichever subgroup takes it, so it gives up the same
+    // pixels and counts the same in every kernel; a subgroup takes another unit only while the
+    // driver's limit still holds a whole budget more.
     do {
         uint unit = takeUnit();
         if (unit >= units) break;

@@ -96,8 +96,7 @@ void main() {
                 if (subgroupBallotBitCount(hits) != 0u) {
                     // The nearest child next; the others on the stack in lane order, each with the
                     // distance at which the ray enters it, so that a pop skips what begins beyond
-                    // the closest hit. (Pushing them farthest first, with 8 more shuffles a visit
-                    // to rank them, measured no faster: docs/gpu-design.md.)
+                    // the closest hit (docs/gpu-design.md, "One ray a subgroup").
                     float nearest = subgroupMin(enter);
                     uint nearLane = subgroupBallotFindLSB(subgroupBallot(hit && enter == nearest));
                     bool push = hit && lane != nearLane;

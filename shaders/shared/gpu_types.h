@@ -67,7 +67,7 @@ struct TriangleShading {
 };
 
 // ---- Materials ------------------------------------------------------------------------------
-// Material models, numbered like the course's MTL `shader N` (docs/render-model.md).
+// Material models, numbered like the course's MTL `shader N` (../shared/docs/render-model.md).
 VITRUM_CONST uint kMaterialNormal = 1u;
 VITRUM_CONST uint kMaterialLambert = 2u;
 VITRUM_CONST uint kMaterialPhong = 3u;  // opaque dielectric: Phong + Schlick-weighted reflection
@@ -127,7 +127,8 @@ VITRUM_CONST uint kFilterNearest = 1u;
 // ---- Per-invocation trace state (storage buffers, one entry per pixel of a tile) ---------------
 // lavapipe stops any shader loop after 65,535 iterations, silently. trace.comp therefore runs
 // at most `iteration budget` counted steps per dispatch; a pixel that is not finished keeps its
-// whole state in these buffers and the next dispatch resumes it (docs/gpu-design.md).
+// whole state in these buffers and the next dispatch resumes it (docs/gpu-design.md, "One loop,
+// bounded, resumable").
 VITRUM_CONST uint kRayStackSize = 16u;    // most pending rays of the depth-first ray tree
 VITRUM_CONST uint kMaxMediumDepth = 4u;   // most media a ray can be inside at once (trace.comp unrolls for 4)
 

@@ -59,7 +59,7 @@ VITRUM_GPU_BEGIN
 VITRUM_CONST uint kStatFirstMax = 20u;  // the first Max
 VITRUM_CONST uint kStatCount = 23u;
 // Not a statistic, but zeroed with them: the dispatch's next unit of work, which each subgroup
-// takes as it starts (trace.comp's takeUnit).
+// takes as it starts (schedule.glsl's takeUnit).
 VITRUM_CONST uint kWorkCursor = 23u;
 VITRUM_CONST uint kDispatchCounterCount = 24u;  // the buffer's uints: the statistics and the cursor
 VITRUM_GPU_END
