@@ -56,7 +56,7 @@ Material materialFromMtl(const MtlEntry& entry, const std::filesystem::path& mtl
         warn(mtlFile.string() + ":" + std::to_string(line) + ": material \"" + entry.name + "\" has " + shader + "; " +
              illum + " makes it " + kNames[int(m.model)]);
     }
-    // Negative coefficients would give negative radiance (render-model.md: no negative pixel).
+    // Negative coefficients would give negative radiance (../shared/docs/render-model.md: no negative pixel).
     auto clamped = [&](auto value, const char* key) {
         if (glm::all(glm::greaterThanEqual(glm::vec3(value), glm::vec3(0.0f)))) return value;
         warn(mtlFile.string() + ": material \"" + entry.name + "\" has a negative " + key + "; clamped to 0");

@@ -3,7 +3,7 @@
 far above 1), as an equirectangular map (scenes/environment/sky.hdr), as six cube faces
 (sky_px.hdr ... sky_nz.hdr) and as a horizontal cube cross (sky_cross.hdr), all from one function of
 direction, so the three backgrounds show the same world. Standard library only; the outputs are
-committed and the build never runs this. Conventions: docs/render-model.md ("Background"), z up."""
+committed and the build never runs this. Conventions: ../shared/docs/render-model.md ("Background"), z up."""
 
 import math
 import os
