@@ -4,6 +4,7 @@
 #define VITRUM_CAMERA_GLSL
 
 #include "bindings.glsl"
+#include "specialization.glsl"
 
 #include "ieee_vector_math.glsl"
 

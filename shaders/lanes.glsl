@@ -1,6 +1,7 @@
 // What the lanes of a subgroup (lavapipe: the 8 lanes of a SIMD group, run in lock step) know of
 // one another. The build with VITRUM_NO_SUBGROUP_OPERATIONS is for devices without subgroup arithmetic
-// and ballots; there each lane answers for itself.
+// and ballots; there each lane answers for itself. The includer declares kFullSubgroups: trace.comp
+// as a specialization constant (specialization.glsl), the self-check kernel as true.
 #ifndef VITRUM_LANES_GLSL
 #define VITRUM_LANES_GLSL
 

@@ -7,6 +7,7 @@
 #define VITRUM_OPTICS_GLSL
 
 #include "ieee_vector_math.glsl"
+#include "shared/gpu_types.h"
 
 // r = d - 2 (d.n) n  (lecture: law of reflection)
 vec3 reflectDirection(vec3 d, vec3 n) { return d - 2.0 * ieeeDot(d, n) * n; }

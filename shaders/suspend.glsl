@@ -9,10 +9,11 @@
 #ifndef VITRUM_SUSPEND_GLSL
 #define VITRUM_SUSPEND_GLSL
 
-#include "trace_state.glsl"
-#include "bvh.glsl"
 #include "bindings.glsl"
 #include "specialization.glsl"
+#include "trace_state.glsl"
+#include "bvh.glsl"
+#include "ray_tree.glsl"  // startPixel
 
 uvec4 gStateTexels[kTraceStateTexels];
 

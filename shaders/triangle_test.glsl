@@ -5,6 +5,7 @@
 #define VITRUM_TRIANGLE_TEST_GLSL
 
 #include "ieee_vector_math.glsl"
+#include "shared/gpu_types.h"
 
 // Woop, Benthin and Wald, "Watertight Ray/Triangle Intersection" (JCGT 2013), without back-face
 // culling; the same arithmetic in the same order as host/bvh/bvh_traversal.cpp, which says why it
