@@ -7,7 +7,9 @@
 #include <fstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "app/render_options.h"
 #include "common/error.h"
 #include "image/image.h"
 #include "analysis/scene_features.h"
@@ -113,6 +115,36 @@ int fuzzImage(const std::uint8_t* data, std::size_t size) {
     } catch (const InputError&) {
     }
     removeFile(name);
+    return 0;
+}
+
+int fuzzRenderArguments(const std::uint8_t* data, std::size_t size) {
+    constexpr std::size_t kMostArguments = 64;
+    std::vector<std::string> pieces{"vitrum", "render"};
+    std::string_view rest(reinterpret_cast<const char*>(data), size);
+    while (!rest.empty() && pieces.size() < kMostArguments) {
+        const std::size_t end = std::min(rest.find('\0'), rest.size());
+        pieces.emplace_back(rest.substr(0, end));
+        rest.remove_prefix(std::min(end + 1, rest.size()));
+    }
+    std::vector<char*> argv;
+    for (std::string& piece : pieces) argv.push_back(piece.data());
+    argv.push_back(nullptr);
+    try {
+        const RenderCommand command = parseRenderCommand(int(pieces.size()), argv.data(), 2);
+        Scene scene;
+        scene.materials.push_back(Material{});
+        scene.objectNames = {"triangle"};
+        Triangle t{};
+        t.position[1] = glm::vec3(1.0f, 0.0f, 0.0f);
+        t.position[2] = glm::vec3(0.0f, 0.0f, 1.0f);
+        for (glm::vec3& n : t.normal) n = glm::vec3(0.0f, -1.0f, 0.0f);
+        scene.triangles.push_back(t);
+        scene.lights.push_back({.position = glm::vec3(0.0f, -2.0f, 2.0f), .colour = glm::vec3(1.0f)});
+        applyOverrides(command, scene);
+        analyseScene(scene);
+    } catch (const InputError&) {
+    }
     return 0;
 }
 

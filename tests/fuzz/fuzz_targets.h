@@ -28,6 +28,11 @@ int fuzzSceneJson(const std::uint8_t* data, std::size_t size);
 // content: PNG, JPEG, BMP, TGA, GIF, PSD, PNM).
 int fuzzImage(const std::uint8_t* data, std::size_t size);
 
+// `vitrum render`'s arguments: the bytes split at zero bytes, each piece an argument after
+// "vitrum render"; parsed, and applied to a small scene (a triangle under a light) as the command
+// applies them, with the checks of the camera, lights and image size. No file is read or written.
+int fuzzRenderArguments(const std::uint8_t* data, std::size_t size);
+
 struct FuzzTarget {
     const char* name;  // the folder name under tests/fuzz/corpus/ and tests/fuzz/regressions/
     int (*run)(const std::uint8_t* data, std::size_t size);
@@ -36,6 +41,7 @@ inline constexpr FuzzTarget kFuzzTargets[] = {
     {"obj_mtl", fuzzObjMtl},
     {"scene_json", fuzzSceneJson},
     {"image", fuzzImage},
+    {"render_arguments", fuzzRenderArguments},
 };
 
 }  // namespace vitrum
