@@ -15,7 +15,6 @@
 #include "bvh/bvh.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
-#include "common/file_extension.h"
 #include "common/progress.h"
 #include "cpu/reference_renderer.h"
 #include "gpu/gpu_buffer.h"
@@ -24,7 +23,6 @@
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
 #include "image/image.h"
-#include "scene/float_range.h"
 #include "scene/scene_loader.h"
 #include "shared/gpu_types.h"
 
