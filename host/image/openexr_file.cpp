@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,56 @@ void checkHeaderWindows(const fs::path& path) {
     checkWindowSizes(path, box(displayBox), box(dataBox));
 }
 
+// Every attribute of every header declares a size that fits in the rest of the file. The C++
+// reader allocates an attribute of a type it does not know (an opaque one) at its declared size
+// before reading it: an 853-byte file that declared 1.1 GB made it allocate that much (found by
+// fuzzing with a 1 GB allocation limit). The layout is the OpenEXR file format's: magic number and
+// version, then each header's attributes (name, type, 4-byte little-endian size, value), a header
+// ending at an empty name, and in a multi-part file a further empty name after the last header.
+void checkAttributeSizes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::error_code ec;
+    const std::uintmax_t fileBytes = fs::file_size(path, ec);
+    if (!in || ec) return;  // the readers say what is wrong with it
+    unsigned char start[8];
+    if (!in.read(reinterpret_cast<char*>(start), 8)) return;
+    const bool multiPart = (start[5] & 0x10) != 0;  // version flags, bit 12
+    const auto readName = [&](std::string& name) {
+        name.clear();
+        for (int c; (c = in.get()) != EOF;) {
+            if (c == 0) return true;
+            if (name.size() >= 255) return false;
+            name.push_back(char(c));
+        }
+        return false;
+    };
+    // A name as the message shows it: printable ASCII, the rest as '?'.
+    const auto shown = [](std::string text) {
+        for (char& c : text)
+            if (c < 32 || c > 126) c = '?';
+        return text.size() > 40 ? text.substr(0, 40) + "..." : text;
+    };
+    std::string name, type;
+    for (int headers = 0; headers < 1 || multiPart;) {
+        if (!readName(name)) return;
+        if (name.empty()) {  // a header's end
+            ++headers;
+            if (!multiPart || in.peek() == 0) return;
+            continue;
+        }
+        unsigned char size[4];
+        if (!readName(type) || !in.read(reinterpret_cast<char*>(size), 4)) return;
+        const std::uint32_t bytes = std::uint32_t(size[0]) | std::uint32_t(size[1]) << 8 |
+                                    std::uint32_t(size[2]) << 16 | std::uint32_t(size[3]) << 24;
+        const std::uintmax_t left = fileBytes - std::uintmax_t(in.tellg());
+        if (bytes > left)
+            throw inputError(path, 0,
+                             "OpenEXR header attribute \"" + shown(name) + "\" (" + shown(type) + ") declares " + std::to_string(bytes) +
+                                 " bytes, but only " + std::to_string(left) + " are left in the file");
+        in.seekg(std::streamoff(bytes), std::ios::cur);
+    }
+}
+
 std::string channelNames(const Imf::ChannelList& channels) {
     std::string names;
     for (auto c = channels.begin(); c != channels.end(); ++c)
@@ -124,6 +175,7 @@ std::vector<float> readDataWindow(const fs::path& path, Imf::InputFile& file) {
 }  // namespace
 
 Image readOpenExr(const fs::path& path) {
+    checkAttributeSizes(path);
     checkHeaderWindows(path);
     try {
         Imf::InputFile file(path.c_str());

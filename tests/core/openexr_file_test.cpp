@@ -230,5 +230,22 @@ TEST_F(OpenExrTest, OversizedWindowsAreRefusedBeforeReading) {
     EXPECT_NE(forgedMessage.find("bytes"), std::string::npos) << forgedMessage;
 }
 
+// An attribute whose declared size is more than the file holds is refused before either reader
+// opens the file: OpenEXR's C++ reader allocates an attribute of a type it does not know at its
+// declared size first (an 853-byte file made it allocate 1.1 GB; tests/fuzz/regressions/image).
+TEST_F(OpenExrTest, AnAttributeLargerThanTheFileIsRefusedBeforeAnyAllocation) {
+    const Imath::Box2i pixel(Imath::V2i(0, 0), Imath::V2i(0, 0));
+    writeFloatChannels(dir_ / "one.exr", pixel, pixel, {"R", "G", "B"}, [](int, int, int) { return 1.0f; });
+    std::ifstream in(dir_ / "one.exr", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // A first attribute of a type no reader knows, declaring 1 GiB, and nothing of it in the file.
+    const std::string opaque = std::string("mystery") + '\0' + "blob" + '\0' + std::string("\x00\x00\x00\x40", 4);
+    bytes.insert(8, opaque);
+    std::ofstream(dir_ / "opaque.exr", std::ios::binary) << bytes;
+    const std::string message = inputErrorOf(dir_ / "opaque.exr");
+    EXPECT_NE(message.find("\"mystery\" (blob) declares 1073741824 bytes"), std::string::npos) << message;
+    EXPECT_NE(message.find("opaque.exr"), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace vitrum
