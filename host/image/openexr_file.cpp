@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <exception>
 #include <fstream>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,29 +72,54 @@ void checkHeaderWindows(const fs::path& path) {
     checkWindowSizes(path, box(displayBox), box(dataBox));
 }
 
-// Every attribute of every header declares a size that fits in the rest of the file. The C++
-// reader allocates an attribute of a type it does not know (an opaque one) at its declared size
-// before reading it: an 853-byte file that declared 1.1 GB made it allocate that much (found by
-// fuzzing with a 1 GB allocation limit). The layout is the OpenEXR file format's: magic number and
-// version, then each header's attributes (name, type, 4-byte little-endian size, value), a header
-// ending at an empty name, and in a multi-part file a further empty name after the last header.
-void checkAttributeSizes(const fs::path& path) {
+// The bytes OpenEXR's C++ reader reads for an attribute of a type it knows whose value has a
+// fixed size, whatever size the attribute declares (ImfHeader.cpp's known types).
+std::optional<std::uint32_t> fixedValueBytes(const std::string& type) {
+    static const std::map<std::string, std::uint32_t> kFixed{
+        {"box2i", 16}, {"box2f", 16},  {"compression", 1}, {"lineOrder", 1}, {"envmap", 1}, {"deepImageState", 1},
+        {"int", 4},    {"float", 4},   {"double", 8},      {"rational", 8},  {"timecode", 8}, {"keycode", 28},
+        {"v2i", 8},    {"v2f", 8},     {"v2d", 16},        {"v3i", 12},      {"v3f", 12},     {"v3d", 24},
+        {"m33f", 36},  {"m33d", 72},   {"m44f", 64},       {"m44d", 128},    {"tiledesc", 9}, {"chromaticities", 32},
+    };
+    const auto found = kFixed.find(type);
+    if (found == kFixed.end()) return std::nullopt;
+    return found->second;
+}
+
+// Walks every header of the file as OpenEXR's C++ reader reads it and refuses one that would make
+// it allocate more than the file holds. That reader allocates a string, a vector, a preview image
+// or an attribute of a type it does not know at the size the file declares before reading it (an
+// 853-byte file made it allocate 1.1 GB; found by fuzzing with a 1 GB allocation limit), and it
+// reads the other types by their content, not their declared size (a channel list up to its empty
+// name, a compression as one byte), so the walk does too, to meet the attributes it meets.
+// Anything else wrong with the header is left to the readers, which say what.
+void checkHeaderAllocations(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     std::error_code ec;
     const std::uintmax_t fileBytes = fs::file_size(path, ec);
-    if (!in || ec) return;  // the readers say what is wrong with it
+    if (!in || ec) return;
     unsigned char start[8];
     if (!in.read(reinterpret_cast<char*>(start), 8)) return;
-    const bool multiPart = (start[5] & 0x10) != 0;  // version flags, bit 12
-    const auto readName = [&](std::string& name) {
+    const std::size_t maxName = 255;  // the reader's Name::MAX_LENGTH, long-names flag or not
+    const bool multiPart = (start[5] & 0x10) != 0;
+    // As the reader's Xdr::read(stream, n, name): up to n + 1 characters, or to a zero byte. Where
+    // none comes it goes on with the next byte (what its name buffer then holds is not ours to know).
+    const auto readName = [&](std::string& name, std::size_t most) {
         name.clear();
         for (int c; (c = in.get()) != EOF;) {
             if (c == 0) return true;
-            if (name.size() >= 255) return false;
             name.push_back(char(c));
+            if (name.size() > most) return true;
         }
         return false;
     };
+    const auto readUint = [&](std::uint32_t& value) {
+        unsigned char b[4];
+        if (!in.read(reinterpret_cast<char*>(b), 4)) return false;
+        value = std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
+        return true;
+    };
+    const auto left = [&] { return fileBytes - std::uintmax_t(in.tellg()); };
     // A name as the message shows it: printable ASCII, the rest as '?'.
     const auto shown = [](std::string text) {
         for (char& c : text)
@@ -100,23 +127,53 @@ void checkAttributeSizes(const fs::path& path) {
         return text.size() > 40 ? text.substr(0, 40) + "..." : text;
     };
     std::string name, type;
+    const auto refuse = [&](std::uintmax_t bytes) {
+        throw inputError(path, 0,
+                         "OpenEXR header attribute \"" + shown(name) + "\" (" + shown(type) + ") declares " +
+                             std::to_string(bytes) + " bytes, but only " + std::to_string(left()) +
+                             " are left in the file");
+    };
     for (int headers = 0; headers < 1 || multiPart;) {
-        if (!readName(name)) return;
-        if (name.empty()) {  // a header's end
+        if (!readName(name, maxName)) return;
+        if (name.empty()) {  // a header's end; a multi-part file's headers end with one more
             ++headers;
             if (!multiPart || in.peek() == 0) return;
             continue;
         }
-        unsigned char size[4];
-        if (!readName(type) || !in.read(reinterpret_cast<char*>(size), 4)) return;
-        const std::uint32_t bytes = std::uint32_t(size[0]) | std::uint32_t(size[1]) << 8 |
-                                    std::uint32_t(size[2]) << 16 | std::uint32_t(size[3]) << 24;
-        const std::uintmax_t left = fileBytes - std::uintmax_t(in.tellg());
-        if (bytes > left)
-            throw inputError(path, 0,
-                             "OpenEXR header attribute \"" + shown(name) + "\" (" + shown(type) + ") declares " + std::to_string(bytes) +
-                                 " bytes, but only " + std::to_string(left) + " are left in the file");
-        in.seekg(std::streamoff(bytes), std::ios::cur);
+        std::uint32_t size = 0;
+        if (!readName(type, maxName) || !readUint(size)) return;
+        if (const auto fixed = fixedValueBytes(type)) {
+            in.seekg(std::streamoff(*fixed), std::ios::cur);
+        } else if (type == "chlist") {
+            std::string channel;
+            for (;;) {
+                if (!readName(channel, 255)) return;
+                if (channel.empty()) break;
+                in.seekg(16, std::ios::cur);  // pixel type, linear, reserved, x and y sampling
+            }
+        } else if (type == "preview") {
+            std::uint32_t width = 0, height = 0;
+            if (!readUint(width) || !readUint(height)) return;
+            const std::uintmax_t bytes = std::uintmax_t(width) * height * 4;
+            if (bytes > left()) refuse(bytes);
+            in.seekg(std::streamoff(bytes), std::ios::cur);
+        } else if (type == "stringvector") {
+            if (size > left()) refuse(size);
+            for (std::uint32_t read = 0; read < size;) {
+                std::uint32_t length = 0;
+                if (!readUint(length)) return;
+                if (length > left()) refuse(length);
+                in.seekg(std::streamoff(length), std::ios::cur);
+                read += 4 + length;
+            }
+        } else if (type == "idmanifest") {
+            throw inputError(path, 0, "an OpenEXR header with an ID manifest (attribute \"" + shown(name) +
+                                          "\"): vitrum does not read them");
+        } else {  // string, floatvector, or a type the reader does not know: read at its declared size
+            if (size > left()) refuse(size);
+            in.seekg(std::streamoff(size), std::ios::cur);
+        }
+        if (!in) return;
     }
 }
 
@@ -175,7 +232,7 @@ std::vector<float> readDataWindow(const fs::path& path, Imf::InputFile& file) {
 }  // namespace
 
 Image readOpenExr(const fs::path& path) {
-    checkAttributeSizes(path);
+    checkHeaderAllocations(path);
     checkHeaderWindows(path);
     try {
         Imf::InputFile file(path.c_str());

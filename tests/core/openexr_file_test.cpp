@@ -245,6 +245,20 @@ TEST_F(OpenExrTest, AnAttributeLargerThanTheFileIsRefusedBeforeAnyAllocation) {
     const std::string message = inputErrorOf(dir_ / "opaque.exr");
     EXPECT_NE(message.find("\"mystery\" (blob) declares 1073741824 bytes"), std::string::npos) << message;
     EXPECT_NE(message.find("opaque.exr"), std::string::npos) << message;
+
+    // The reader reads a compression as its one byte, whatever size the attribute declares: an
+    // attribute right after it is one it meets, though a declared size of 513 would skip it.
+    std::string skipped((std::istreambuf_iterator<char>(std::ifstream(dir_ / "one.exr", std::ios::binary).rdbuf())),
+                        std::istreambuf_iterator<char>());
+    const std::string compression = std::string("compression") + '\0' + "compression" + '\0';
+    const std::size_t at = skipped.find(compression);
+    ASSERT_NE(at, std::string::npos);
+    const std::size_t size = at + compression.size();
+    skipped.replace(size, 4, std::string("\x01\x02\x00\x00", 4));  // 513
+    skipped.insert(size + 5, std::string("x") + '\0' + "mystery" + '\0' + std::string("\x00\x00\x00\x40", 4));
+    std::ofstream(dir_ / "skipped.exr", std::ios::binary) << skipped;
+    const std::string skippedMessage = inputErrorOf(dir_ / "skipped.exr");
+    EXPECT_NE(skippedMessage.find("\"x\" (mystery) declares 1073741824 bytes"), std::string::npos) << skippedMessage;
 }
 
 }  // namespace
