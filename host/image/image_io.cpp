@@ -25,6 +25,7 @@
 #include "image/declared_size.h"
 #include "image/image.h"
 #include "image/openexr_file.h"
+#include "image/jpeg_segments.h"
 #include "image/png_chunks.h"
 #include "image/png_writer.h"
 #include "image/pnm_file.h"
@@ -229,6 +230,8 @@ bool isPngOrJpeg(const FileBytes& file) {
 Image readSrgb(const fs::path& path, const FileBytes& file) {
     if (!isPngOrJpeg(file))
         throw inputError(path, 0, "cannot read image: not PNG, JPEG, Radiance HDR, PFM, binary PNM or OpenEXR");
+    if (const auto problem = jpegHuffmanTableProblem(file.bytes); problem && !isPng(file.bytes))
+        throw inputError(path, 0, "cannot read JPEG image: " + *problem);
     int w = 0;
     int h = 0;
     int n = 0;

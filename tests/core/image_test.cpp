@@ -382,6 +382,24 @@ TEST_F(ImageIoTest, AnUnknownPngChunkIsNamedInPrintableCharacters) {
     EXPECT_TRUE(std::all_of(message.begin(), message.end(), [](char c) { return c >= 0x20 && c < 0x7f; })) << message;
 }
 
+// A JPEG Huffman table of more than 256 codes (ITU T.81 allows no more) is refused before stb
+// decodes it: stb_image 2.27 builds it past the end of its arrays (found by fuzzing,
+// tests/fuzz/regressions/image/jpeg_huffman_table_of_1031_codes). The course's JPEGs still read.
+TEST_F(ImageIoTest, AJpegHuffmanTableOfMoreThan256CodesIsRefused) {
+    const fs::path course = fs::path(VITRUM_SHARED_DIR) / "scenes/course/allied_avenger_6887/3069bp13.jpg";
+    const Image original = readImage(course);
+    EXPECT_GT(original.width, 0u);
+    std::string bytes = readBytesOf(course);
+    const std::size_t dht = bytes.find("\xFF\xC4");
+    ASSERT_NE(dht, std::string::npos);
+    for (std::size_t i = 0; i < 16; ++i) bytes[dht + 5 + i] = char(20);  // 16 x 20 = 320 codes
+    const fs::path path = dir_ / "huffman.jpg";
+    writeBytes(path, bytes);
+    const std::string message = exceptionMessage([&] { readImage(path); });
+    EXPECT_NE(message.find("declares 320 codes"), std::string::npos) << message;
+    EXPECT_NE(message.find("huffman.jpg"), std::string::npos) << message;
+}
+
 TEST_F(ImageIoTest, MissingFileNamesThePath) {
     const fs::path path = dir_ / "does_not_exist.png";
     const std::string message = exceptionMessage([&] { readImage(path); });
