@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "common/error.h"
+#include "common/float_text.h"
 #include "common/input_file.h"
 #include "scene/quote_input.h"
 
@@ -33,10 +34,8 @@ std::string_view trim(std::string_view s) {
 }
 
 std::optional<float> parseFloat(std::string_view word) {
-    if (!word.empty() && word.front() == '+') word.remove_prefix(1);
     float value = 0.0f;
-    auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
-    if (ec != std::errc() || end != word.data() + word.size() || !std::isfinite(value)) return std::nullopt;
+    if (readFloat(word, value) != FloatText::Number) return std::nullopt;
     return value;
 }
 

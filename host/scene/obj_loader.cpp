@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/float_text.h"
 #include "common/input_file.h"
 #include "image/image.h"
 #include "scene/mtl_material.h"
@@ -84,12 +85,11 @@ ObjScan scanObj(const fs::path& file, std::string_view text) {
             for (int i = 0; i < 3; ++i) {
                 std::size_t numberEnd = 0;
                 std::string_view number = firstWord(rest, &numberEnd);
-                if (!number.empty() && number.front() == '+') number.remove_prefix(1);
                 float value = 0.0f;
-                auto [ptr, ec] = std::from_chars(number.data(), number.data() + number.size(), value);
-                if (number.empty() || ptr != number.data() + number.size())
+                const FloatText read = readFloat(number, value);
+                if (read == FloatText::NotANumber)
                     throw inputError(file, lineNumber, "v expects three numbers, got " + quoteInput(line));
-                if (ec != std::errc() || !std::isfinite(value))
+                if (read == FloatText::NotFinite)
                     throw inputError(file, lineNumber,
                                      "vertex coordinate " + quoteInput(number) + " is not a finite number");
                 rest = rest.substr(numberEnd);

@@ -155,6 +155,25 @@ TEST(SceneObj, ZeroAreaTriangleIsKeptWithAUnitNormal) {
     EXPECT_NEAR(glm::length(scene.triangles[0].normal[0]), 1.0f, 1e-6f);
 }
 
+// A coordinate below float's smallest is 0, as tinyobjloader reads it: not an error (it was
+// refused as "not a finite number").
+TEST(SceneObj, CoordinatesTooSmallForAFloatAreZero) {
+    fs::path dir = tempDir();
+    for (const char* tiny : {"1e-50", "-1e-50", "1e-400"}) {
+        fs::path obj = write(dir / "tiny.obj", std::string("v ") + tiny + " 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n");
+        const Scene scene = loadScene(obj);
+        ASSERT_EQ(scene.triangles.size(), 1u) << tiny;
+        EXPECT_EQ(scene.triangles[0].position[0], glm::vec3(0.0f)) << tiny;
+    }
+    // The same in an MTL (it was "Kd expects three numbers").
+    write(dir / "tiny.mtl", "newmtl a\nshader 2\nKd 1e-50 0.5 0.5\n");
+    fs::path obj = write(dir / "tiny_mtl.obj", "mtllib tiny.mtl\nusemtl a\nv 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n");
+    const Scene scene = loadScene(obj);
+    ASSERT_EQ(scene.materials.size(), 1u);
+    EXPECT_EQ(scene.materials[0].diffuse.x, 0.0f);
+    EXPECT_GT(scene.materials[0].diffuse.y, 0.0f);
+}
+
 TEST(SceneObj, NonFiniteCoordinatesAreErrorsWithLine) {
     fs::path dir = tempDir();
     for (const char* bad : {"nan", "inf", "-inf", "1e39"}) {
