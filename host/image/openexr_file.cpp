@@ -129,7 +129,7 @@ void checkHeaderAllocations(const fs::path& path) {
     std::string name, type;
     const auto refuse = [&](std::uintmax_t bytes) {
         throw inputError(path, 0,
-                         "OpenEXR header attribute \"" + shown(name) + "\" (" + shown(type) + ") declares " +
+                         "cannot read OpenEXR image: header attribute \"" + shown(name) + "\" (" + shown(type) + ") declares " +
                              std::to_string(bytes) + " bytes, but only " + std::to_string(left()) +
                              " are left in the file");
     };
@@ -167,8 +167,8 @@ void checkHeaderAllocations(const fs::path& path) {
                 read += 4 + length;
             }
         } else if (type == "idmanifest") {
-            throw inputError(path, 0, "an OpenEXR header with an ID manifest (attribute \"" + shown(name) +
-                                          "\"): vitrum does not read them");
+            throw inputError(path, 0, "cannot read OpenEXR image: its header has an ID manifest (attribute \"" +
+                                          shown(name) + "\"), which vitrum does not read");
         } else {  // string, floatvector, or a type the reader does not know: read at its declared size
             if (size > left()) refuse(size);
             in.seekg(std::streamoff(size), std::ios::cur);
