@@ -33,7 +33,7 @@ CameraSurface cameraSurface(const Scene& scene, const RayOffsetScale& scale);
 
 // Where a primary ray of direction `d` starts: off the camera's surface (`normal`, from
 // CameraSurface) on the side `d` goes to, along +normal where d is parallel to it; `from` itself
-// where the normal is 0. shaders/trace.comp's startPrimaryRay does the same.
+// where the normal is 0. shaders/ray_tree.glsl's startPrimaryRay does the same.
 template <class Real>
 glm::vec<3, Real> primaryRayOrigin(const glm::vec<3, Real>& from, const glm::vec<3, Real>& normal,
                                    const glm::vec<3, Real>& d, const RayOffsetScale& scale) {

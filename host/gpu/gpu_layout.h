@@ -22,6 +22,5 @@ static_assert(sizeof(GpuLight) == 16 * kGpuLightTexels);
 
 namespace vitrum::gpu {
 static_assert(sizeof(PendingRay) == 64);
-static_assert(kTraceStateBytes == 256);
 static_assert(kMaxMediumDepth == 4, "trace.comp's medium stack code is unrolled for 4 entries");
 }  // namespace vitrum::gpu

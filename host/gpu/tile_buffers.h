@@ -33,6 +33,9 @@ inline constexpr std::array<TileBuffer, 4> kTileBuffers{{
      gpu::kTraversalStackSize * sizeof(std::uint32_t)},
 }};
 
+// The bytes of `buffer` a pixel, for a kernel that keeps `pendingRayCapacity` pending rays a pixel.
+std::uint64_t tileBufferBytesPerPixel(const TileBuffer& buffer, std::uint32_t pendingRayCapacity);
+
 // The bytes of `buffer` for a tile of `tile` pixels and a kernel that keeps `pendingRayCapacity`
 // pending rays a pixel. The resumable kernel keeps pending rays by slot, the first dispatch by
 // invocation (shaders/pending_rays.glsl): as many as the tile's whole 8x8 workgroups have.

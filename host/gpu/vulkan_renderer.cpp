@@ -84,8 +84,7 @@ std::uint64_t stateBytesPerPixel(std::uint32_t pendingRayCapacity) {
     std::uint64_t bytes = 0;
     for (const TileBuffer& buffer : kTileBuffers)
         if (buffer.binding != gpu::kBindingPixels)
-            bytes += buffer.perPendingRay ? pendingRayCapacity * (buffer.bytesPerPixel / gpu::kRayStackSize)
-                                          : buffer.bytesPerPixel;
+            bytes += tileBufferBytesPerPixel(buffer, pendingRayCapacity);
     return bytes;
 }
 
