@@ -88,10 +88,10 @@ std::optional<std::uint32_t> fixedValueBytes(const std::string& type) {
 
 // Walks every header of the file as OpenEXR's C++ reader reads it and refuses one that would make
 // it allocate more than the file holds. That reader allocates a string, a vector, a preview image
-// or an attribute of a type it does not know at the size the file declares before reading it (an
-// 853-byte file made it allocate 1.1 GB; found by fuzzing with a 1 GB allocation limit), and it
-// reads the other types by their content, not their declared size (a channel list up to its empty
-// name, a compression as one byte), so the walk does too, to meet the attributes it meets.
+// or an attribute of a type it does not know at the size the file declares before reading it
+// (docs/testing.md, "What fuzzing has found"), and it reads the other types by their content, not
+// their declared size (a channel list up to its empty name, a compression as one byte), so the
+// walk does too, to meet the attributes it meets.
 // Anything else wrong with the header is left to the readers, which say what.
 void checkHeaderAllocations(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
