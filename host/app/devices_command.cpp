@@ -5,6 +5,7 @@
 
 #include "app/arguments.h"
 #include "app/commands.h"
+#include "common/byte_size.h"
 #include "gpu/gpu_buffer.h"
 #include "gpu/tile_size.h"
 #include "gpu/trace_pipeline.h"

@@ -14,6 +14,7 @@
 #include "app/render_options.h"
 #include "bvh/bvh.h"
 #include "common/atomic_file.h"
+#include "common/byte_size.h"
 #include "common/error.h"
 #include "common/progress.h"
 #include "cpu/reference_renderer.h"
@@ -53,22 +54,6 @@ std::string largeRenderNote(const Scene& scene) {
     return text;
 }
 
-// The files of the scene's largest textures, for an error about their buffer: "a.png (4096 x
-// 4096, 192 MiB)" and the next two.
-std::string largestTextures(const Scene& scene) {
-    std::vector<const Texture*> bySize;
-    for (const Texture& texture : scene.textures) bySize.push_back(&texture);
-    std::sort(bySize.begin(), bySize.end(),
-              [](const Texture* a, const Texture* b) { return a->texels.size() > b->texels.size(); });
-    std::string list = bySize.size() == 1 ? "the texture: " : "the largest textures: ";
-    for (std::size_t i = 0; i < std::min<std::size_t>(bySize.size(), 3); ++i) {
-        const Texture& t = *bySize[i];
-        list += (i ? ", " : "") + t.path.string() + " (" + std::to_string(t.width) + " x " + std::to_string(t.height) +
-                ", " + describeBytes(t.texels.size() * 3 * sizeof(float)) + ")";
-    }
-    return list;
-}
-
 // Refuses a scene whose GPU buffers would not fit the device, from the scene's counts alone: before
 // the BVH build, the packing and the upload (gpu/vulkan_renderer.cpp makes the buffers, and
 // GpuBuffer checks each again then). The BVH has at most 2n - 1 nodes for n triangles.
@@ -88,7 +73,6 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         VkDeviceSize bytes;
         BufferKind kind;
         bool perTile = false;  // sized by --tile, not by the scene or the image
-        bool textures = false;  // the scene's textures and environment maps, whose files the error names
     };
     std::vector<Buffer> buffers{
         {"BVH nodes", triangles * sizeof(gpu::TraversalNode), kTexel},  // at most triangles - 1 interior nodes
@@ -96,7 +80,7 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         {"triangle normals and uvs", triangles * sizeof(gpu::TriangleShading), kTexel},
         {"materials", scene.materials.size() * sizeof(gpu::GpuMaterial), kTexel},
         {"lights", scene.lights.size() * sizeof(gpu::GpuLight), kTexel},
-        {"texture texels", texels * 3 * sizeof(float), kStorage, false, true},
+        {"texture texels", texels * 3 * sizeof(float), kStorage},  // within the limit: loadScene refused more
     };
     // The general kernel's: the scene's analysis, which may need fewer pending rays, comes later.
     for (const TileBuffer& buffer : kTileBuffers)
@@ -106,7 +90,6 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         if (buffer.bytes > bufferLimit(device, buffer.kind).bytes) {
             const InputError error = bufferTooLarge(device, buffer.what, buffer.bytes, buffer.kind);
             if (buffer.perTile) throw InputError(std::string(error.what()) + "; a smaller --tile needs less");
-            if (buffer.textures) throw InputError(std::string(error.what()) + "; " + largestTextures(scene));
             throw error;
         }
         total += buffer.bytes;
@@ -130,21 +113,24 @@ int renderCommand(int argc, char** argv, int first) {
     checkOutputs(command);
     using Clock = std::chrono::steady_clock;
     auto start = Clock::now();
-    Scene scene = loadScene(command.scenePath);
+
+    // The device comes first, so that a scene too large for it is refused before any long work:
+    // a texture by its header, before it is decoded; the rest before the BVH build.
+    std::optional<VulkanDevice> device;
+    TexelLimit texelLimit;
+    if (command.backend == Backend::Vulkan) {
+        device.emplace(command.device);
+        const BufferLimit limit = bufferLimit(*device, BufferKind::Storage);
+        texelLimit = {limit.bytes, describeBufferLimit(*device, BufferKind::Storage)};
+    }
+    const double deviceSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+
+    auto loadStart = Clock::now();
+    Scene scene = loadScene(command.scenePath, texelLimit);
     applyOverrides(command, scene);
     if (const std::string note = largeRenderNote(scene); !note.empty()) warn(note);
-    double loadSeconds = std::chrono::duration<double>(Clock::now() - start).count();
-
-    // The device comes before the BVH build, so that a scene too large for it is refused before
-    // any long work.
-    std::optional<VulkanDevice> device;
-    double deviceSeconds = 0.0;
-    if (command.backend == Backend::Vulkan) {
-        auto deviceStart = Clock::now();
-        device.emplace(command.device);
-        deviceSeconds = std::chrono::duration<double>(Clock::now() - deviceStart).count();
-        checkSceneFitsDevice(*device, scene, command.gpu);
-    }
+    const double loadSeconds = std::chrono::duration<double>(Clock::now() - loadStart).count();
+    if (device) checkSceneFitsDevice(*device, scene, command.gpu);
 
     RenderStats stats;
     stats.addPhase("load", loadSeconds);

@@ -68,11 +68,6 @@ bool stagedUploadsForced() {
     return text && std::string_view(text) == "1";
 }
 
-std::string describeBytes(VkDeviceSize bytes) {
-    if (bytes < (VkDeviceSize(1) << 20)) return std::to_string(bytes) + " bytes";
-    return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
-}
-
 BufferLimit bufferLimit(const VulkanDevice& device, BufferKind kind) {
     const VkPhysicalDeviceLimits& limits = device.properties().limits;
     BufferLimit limit = kind == BufferKind::Storage
@@ -82,12 +77,16 @@ BufferLimit bufferLimit(const VulkanDevice& device, BufferKind kind) {
     return limit;
 }
 
-InputError bufferTooLarge(const VulkanDevice& device, const std::string& what, VkDeviceSize size, BufferKind kind) {
+std::string describeBufferLimit(const VulkanDevice& device, BufferKind kind) {
     const BufferLimit limit = bufferLimit(device, kind);
+    return device.name() + " allows " + describeBytes(limit.bytes) +
+           (kind == BufferKind::Storage ? " per storage buffer (" : " per texel buffer of 16-byte texels (") +
+           limit.source + ")";
+}
+
+InputError bufferTooLarge(const VulkanDevice& device, const std::string& what, VkDeviceSize size, BufferKind kind) {
     return InputError("the scene does not fit the device: " + what + " needs " + describeBytes(size) + ", but " +
-                      device.name() + " allows " + describeBytes(limit.bytes) +
-                      (kind == BufferKind::Storage ? " per storage buffer (" : " per texel buffer of 16-byte texels (") +
-                      limit.source + ")");
+                      describeBufferLimit(device, kind));
 }
 
 GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsageFlags usage, const std::string& what,

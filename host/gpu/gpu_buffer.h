@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/byte_size.h"
 #include "common/error.h"
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_handle.h"
@@ -92,8 +93,8 @@ struct BufferLimit {
     const char* source;  // "maxStorageBufferRange", "maxTexelBufferElements" or "VITRUM_MAX_BUFFER_BYTES"
 };
 BufferLimit bufferLimit(const VulkanDevice& device, BufferKind kind);
-// "N bytes" below 1 MiB, else "N MiB" (rounded up).
-std::string describeBytes(VkDeviceSize bytes);
+// "DEVICE allows M MiB per storage buffer (maxStorageBufferRange)"
+std::string describeBufferLimit(const VulkanDevice& device, BufferKind kind);
 // "the scene does not fit the device: WHAT needs N MiB, but DEVICE allows M MiB per storage buffer (...)"
 InputError bufferTooLarge(const VulkanDevice& device, const std::string& what, VkDeviceSize size, BufferKind kind);
 

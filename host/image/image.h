@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include "image/pixel_limit.h"
+
 namespace vitrum {
 
 struct Image {
@@ -26,7 +28,8 @@ struct Image {
 void writeImage(const Image& image, const std::filesystem::path& path);
 
 // PNG/JPEG/BMP/TGA are decoded from sRGB to linear; .hdr, .pfm and .exr are linear already.
-// Throws InputError naming the file for a missing, corrupt or unsupported file.
-Image readImage(const std::filesystem::path& path);
+// Throws InputError naming the file for a missing, corrupt or unsupported file, and ImageTooLarge,
+// before decoding, for one whose header declares more pixels than `limit`.
+Image readImage(const std::filesystem::path& path, const PixelLimit& limit = {});
 
 }  // namespace vitrum

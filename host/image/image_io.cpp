@@ -101,7 +101,7 @@ std::string pfmToken(const std::vector<unsigned char>& bytes, std::size_t& pos) 
     return token;
 }
 
-Image readPfm(const fs::path& path) {
+Image readPfm(const fs::path& path, const PixelLimit& limit) {
     const std::vector<unsigned char> bytes = readInputFile(path, "the image", kMaxImageFileBytes);
 
     auto corrupt = [&](const std::string& what) { return inputError(path, 0, "corrupt PFM file: " + what); };
@@ -132,6 +132,7 @@ Image readPfm(const fs::path& path) {
         throw corrupt("bad size " + widthText + "x" + heightText);
     }
     if (scale == 0.0 || !std::isfinite(scale)) throw corrupt("bad scale " + scaleText);
+    limit.check(path, "image", std::uint64_t(width), std::uint64_t(height));
     // Exactly one whitespace character separates the header from the raster.
     if (pos >= bytes.size() || !std::isspace(bytes[pos])) throw corrupt("truncated header");
     ++pos;
@@ -182,12 +183,13 @@ FileBytes readFileBytes(const fs::path& path) {
 // stb decodes whatever size a header declares, reading zeros past the end of a truncated file:
 // 137 bytes of TGA can ask for 256 x 65535 pixels (found by fuzzing). So the declared size is
 // checked first (declared_size.h).
-void checkStbDeclaredSize(const fs::path& path, const FileBytes& file) {
+void checkStbDeclaredSize(const fs::path& path, const FileBytes& file, const PixelLimit& limit) {
     int w = 0;
     int h = 0;
     int n = 0;
     if (!stbi_info_from_memory(file.data(), file.size(), &w, &h, &n)) return;  // stbi_load reports why
     checkDeclaredSize(path, "image", std::max(w, 0), std::max(h, 0), std::uint64_t(file.size()));
+    limit.check(path, "image", std::uint64_t(std::max(w, 0)), std::uint64_t(std::max(h, 0)));
 }
 
 Image readLinearHdr(const fs::path& path, const FileBytes& file) {
@@ -329,19 +331,19 @@ void writeImage(const Image& image, const fs::path& path) {
     }
 }
 
-Image readImage(const fs::path& path) {
+Image readImage(const fs::path& path, const PixelLimit& limit) {
     requireRegularFile(path, "the image");  // the OpenEXR library opens it itself
     const std::string ext = lowerCaseExtension(path);
-    if (ext == ".pfm") return readPfm(path);
-    if (ext == ".exr") return readOpenExr(path);
+    if (ext == ".pfm") return readPfm(path, limit);
+    if (ext == ".exr") return readOpenExr(path, limit);
     // Decide by content between linear Radiance HDR and sRGB 8/16-bit images, so a misnamed
     // .hdr is never gamma-converted by stb (and a .hdr that is not one is reported).
     FileBytes file = readFileBytes(path);
     removeEmptyImageDataChunks(file.bytes);
     const bool isHdr = stbi_is_hdr_from_memory(file.data(), file.size()) != 0;
     if (ext == ".hdr" && !isHdr) throw inputError(path, 0, "cannot read image: not a Radiance HDR file");
-    if (isBinaryPnm(file.bytes)) return readPnm(path, file.bytes);
-    checkStbDeclaredSize(path, file);
+    if (isBinaryPnm(file.bytes)) return readPnm(path, file.bytes, limit);
+    checkStbDeclaredSize(path, file, limit);
     if (isHdr) return readLinearHdr(path, file);
     return readSrgb(path, file);
 }

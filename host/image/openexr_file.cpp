@@ -231,7 +231,7 @@ std::vector<float> readDataWindow(const fs::path& path, Imf::InputFile& file) {
 
 }  // namespace
 
-Image readOpenExr(const fs::path& path) {
+Image readOpenExr(const fs::path& path, const PixelLimit& limit) {
     checkHeaderAllocations(path);
     checkHeaderWindows(path);
     try {
@@ -239,6 +239,7 @@ Image readOpenExr(const fs::path& path) {
         const Imath::Box2i display = file.header().displayWindow();
         const Imath::Box2i data = file.header().dataWindow();
         checkWindowSizes(path, display, data);
+        limit.check(path, "OpenEXR display window", std::uint64_t(width(display)), std::uint64_t(height(display)));
         Image image(std::uint32_t(width(display)), std::uint32_t(height(display)));
         if (data.isEmpty()) return image;
         const std::vector<float> rgb = readDataWindow(path, file);

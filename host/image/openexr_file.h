@@ -17,8 +17,9 @@
 
 namespace vitrum {
 
-// Throws InputError naming the file for a missing, corrupt, oversized or colourless file.
-Image readOpenExr(const std::filesystem::path& path);
+// Throws InputError naming the file for a missing, corrupt, oversized or colourless file, and
+// ImageTooLarge for a display window beyond `limit`, before the pixels are read.
+Image readOpenExr(const std::filesystem::path& path, const PixelLimit& limit = {});
 
 // Throws std::exception (the library's) when the file cannot be written.
 void writeOpenExr(const Image& image, const std::filesystem::path& path);

@@ -42,7 +42,7 @@ bool isBinaryPnm(const std::vector<unsigned char>& bytes) {
     return bytes.size() >= 2 && bytes[0] == 'P' && (bytes[1] == '5' || bytes[1] == '6');
 }
 
-Image readPnm(const fs::path& path, const std::vector<unsigned char>& bytes) {
+Image readPnm(const fs::path& path, const std::vector<unsigned char>& bytes, const PixelLimit& limit) {
     if (!isBinaryPnm(bytes)) throw inputError(path, 0, "corrupt PNM file: expected the magic 'P5' or 'P6'");
     const std::size_t channels = bytes[1] == '5' ? 1 : 3;
     std::size_t pos = 2;
@@ -55,6 +55,7 @@ Image readPnm(const fs::path& path, const std::vector<unsigned char>& bytes) {
                              " (at most 16384 pixels on a side)");
     if (maxval < 1 || maxval > 65535)
         throw inputError(path, 0, "corrupt PNM file: maxval " + std::to_string(maxval) + " (1 to 65535)");
+    limit.check(path, "image", std::uint64_t(width), std::uint64_t(height));
     // Exactly one whitespace character separates the header from the raster.
     if (pos >= bytes.size() || !std::isspace(bytes[pos]))
         throw inputError(path, 0, "corrupt PNM file: truncated header");

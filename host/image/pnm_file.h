@@ -19,7 +19,7 @@ namespace vitrum {
 bool isBinaryPnm(const std::vector<unsigned char>& bytes);
 
 // The image in the bytes of the file at `path`. Throws InputError naming the file for a corrupt
-// or truncated file.
-Image readPnm(const std::filesystem::path& path, const std::vector<unsigned char>& bytes);
+// or truncated file, and ImageTooLarge for one beyond `limit`.
+Image readPnm(const std::filesystem::path& path, const std::vector<unsigned char>& bytes, const PixelLimit& limit = {});
 
 }  // namespace vitrum

@@ -1,5 +1,8 @@
 #include "scene/environment_map.h"
 
+#include <cstdint>
+#include <limits>
+
 #include "common/error.h"
 #include "image/image.h"
 
@@ -12,17 +15,19 @@ Texture toTexture(const std::filesystem::path& path, Image image) {
 
 }  // namespace
 
-void loadSphericalBackground(Scene& scene, const std::filesystem::path& file) {
-    Image image = readImage(file);
+void loadSphericalBackground(Scene& scene, const std::filesystem::path& file, const TexelLimit& limit) {
+    Image image = readImage(file, limit.leftAfter(scene));
     scene.background.kind = BackgroundKind::Spherical;
     scene.background.map = int(scene.textures.size());
     scene.textures.push_back(toTexture(file, std::move(image)));
 }
 
-void loadCubeBackground(Scene& scene, const std::array<std::filesystem::path, 6>& faces) {
+void loadCubeBackground(Scene& scene, const std::array<std::filesystem::path, 6>& faces,
+                        const TexelLimit& limit) {
     std::vector<Texture> loaded;
+    std::uint64_t loadedBytes = 0;
     for (const auto& file : faces) {
-        Image image = readImage(file);
+        Image image = readImage(file, limit.leftAfter(scene, loadedBytes));
         if (image.width != image.height)
             throw inputError(file, 0, "a cube map face must be square, this one is " + std::to_string(image.width) +
                                           "x" + std::to_string(image.height));
@@ -31,6 +36,7 @@ void loadCubeBackground(Scene& scene, const std::array<std::filesystem::path, 6>
                                           std::to_string(image.width) + " wide, " +
                                           loaded.front().path.filename().string() + " is " +
                                           std::to_string(loaded.front().width));
+        loadedBytes += image.pixels.size() * PixelLimit::kBytesPerPixel;
         loaded.push_back(toTexture(file, std::move(image)));
     }
     scene.background.kind = BackgroundKind::Cube;
@@ -38,8 +44,11 @@ void loadCubeBackground(Scene& scene, const std::array<std::filesystem::path, 6>
     for (Texture& t : loaded) scene.textures.push_back(std::move(t));
 }
 
-void loadCubeCrossBackground(Scene& scene, const std::filesystem::path& file) {
-    Image cross = readImage(file);
+void loadCubeCrossBackground(Scene& scene, const std::filesystem::path& file, const TexelLimit& limit) {
+    // Six of the cross's twelve cells are kept.
+    PixelLimit left = limit.leftAfter(scene);
+    left.pixels = left.pixels > std::numeric_limits<std::uint64_t>::max() / 2 ? left.pixels : 2 * left.pixels;
+    Image cross = readImage(file, left);
     const std::uint32_t size = cross.width / 4;
     if (size == 0 || cross.width != 4 * size || cross.height != 3 * size)
         throw inputError(file, 0, "a cube cross must be 4 faces wide and 3 high (for example 1024x768), got " +

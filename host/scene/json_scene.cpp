@@ -41,7 +41,8 @@ std::string jsonReason(std::string what) {
 
 class JsonSceneReader {
 public:
-    JsonSceneReader(fs::path file, std::string text) : file_(std::move(file)), text_(std::move(text)) {}
+    JsonSceneReader(fs::path file, std::string text, TexelLimit texelLimit)
+        : file_(std::move(file)), text_(std::move(text)), texelLimit_(std::move(texelLimit)) {}
 
     Scene read() {
         // Far beyond any scene's (objects, an entry, its transform, a vector: 4).
@@ -77,7 +78,7 @@ public:
         if (!objectList) fail("", "a scene needs \"objects\": a non-empty list of OBJ files");
         std::vector<ObjectSpec> specs = objects(*objectList, "/objects");
 
-        ObjLoader loader(scene);
+        ObjLoader loader(scene, texelLimit_);
         for (const ObjectSpec& spec : specs) loader.load(spec.obj, spec.options);
         if (const auto problem = lightProblem(scene))
             fail("/lights/" + std::to_string(problem->light) + "/position", problem->message);
@@ -215,15 +216,15 @@ private:
         };
         try {
             if (const json* x = member(v, "spherical")) {
-                loadSphericalBackground(scene, imagePath(*x, path + "/spherical"));
+                loadSphericalBackground(scene, imagePath(*x, path + "/spherical"), texelLimit_);
             } else if (const json* x = member(v, "cube_cross")) {
-                loadCubeCrossBackground(scene, imagePath(*x, path + "/cube_cross"));
+                loadCubeCrossBackground(scene, imagePath(*x, path + "/cube_cross"), texelLimit_);
             } else if (const json* x = member(v, "cube")) {
                 if (!x->is_array() || x->size() != 6)
                     expected(*x, path + "/cube", "six image file names (+x, -x, +y, -y, +z, -z)");
                 std::array<fs::path, 6> faces;
                 for (std::size_t i = 0; i < 6; ++i) faces[i] = imagePath((*x)[i], path + "/cube/" + std::to_string(i));
-                loadCubeBackground(scene, faces);
+                loadCubeBackground(scene, faces, texelLimit_);
             }
         } catch (const InputError& e) {
             fail(path, e.what());
@@ -326,13 +327,14 @@ private:
 
     fs::path file_;
     std::string text_;
+    TexelLimit texelLimit_;
     std::unordered_map<std::string, int> lines_;
 };
 
 }  // namespace
 
-Scene readJsonScene(const fs::path& file) {
-    return JsonSceneReader(file, readInputText(file, "the scene file", kMaxSceneFileBytes)).read();
+Scene readJsonScene(const fs::path& file, const TexelLimit& texelLimit) {
+    return JsonSceneReader(file, readInputText(file, "the scene file", kMaxSceneFileBytes), texelLimit).read();
 }
 
 }  // namespace vitrum

@@ -5,11 +5,13 @@
 #include <filesystem>
 
 #include "scene/scene.h"
+#include "scene/texel_limit.h"
 
 namespace vitrum {
 
 // Throws InputError for a missing or malformed file, a value of the wrong type or out of range,
-// and for errors in the OBJ/MTL files it names. Unknown keys only warn.
-Scene readJsonScene(const std::filesystem::path& file);
+// and for errors in the OBJ/MTL files it names, the images beyond `texelLimit` included. Unknown
+// keys only warn.
+Scene readJsonScene(const std::filesystem::path& file, const TexelLimit& texelLimit = {});
 
 }  // namespace vitrum

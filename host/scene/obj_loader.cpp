@@ -204,9 +204,11 @@ int ObjLoader::texture(const fs::path& imageFile, const fs::path& mtlFile, int l
     if (auto found = textures_.find(key); found != textures_.end()) return found->second;
     int index = -1;
     try {
-        Image image = readImage(imageFile);
+        Image image = readImage(imageFile, texelLimit_.leftAfter(scene_));
         index = int(scene_.textures.size());
         scene_.textures.push_back(Texture{imageFile, int(image.width), int(image.height), std::move(image.pixels)});
+    } catch (const ImageTooLarge& e) {
+        throw inputError(mtlFile, line, std::string("map_Kd ") + e.what());
     } catch (const InputError& e) {
         warn(mtlFile.string() + ":" + std::to_string(line) + ": texture cannot be read (" + e.what() +
              "); using Kd instead");

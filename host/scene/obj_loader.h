@@ -11,6 +11,7 @@
 #include <string>
 
 #include "scene/scene.h"
+#include "scene/texel_limit.h"
 
 namespace vitrum {
 
@@ -21,10 +22,11 @@ struct ObjOptions {
 
 class ObjLoader {
 public:
-    explicit ObjLoader(Scene& scene) : scene_(scene) {}
+    explicit ObjLoader(Scene& scene, TexelLimit texelLimit = {}) : scene_(scene), texelLimit_(std::move(texelLimit)) {}
 
     // Throws InputError naming the file: missing, unparsable, non-finite coordinates, face indices
-    // out of range, no triangles. Missing MTL files and textures only warn.
+    // out of range, no triangles. Missing MTL files and textures only warn; a texture beyond the
+    // texel limit throws ImageTooLarge.
     void load(const std::filesystem::path& objFile, const ObjOptions& options = {});
 
 private:
@@ -34,6 +36,7 @@ private:
     std::uint32_t defaultMaterialIndex();
 
     Scene& scene_;
+    TexelLimit texelLimit_;
     std::map<std::filesystem::path, Library> libraries_;
     std::map<std::filesystem::path, int> textures_;  // -1: could not be read (warned once)
     std::optional<std::uint32_t> defaultMaterial_;

@@ -5,10 +5,13 @@
 #include <filesystem>
 
 #include "scene/scene.h"
+#include "scene/texel_limit.h"
 
 namespace vitrum {
 
-Scene loadScene(const std::filesystem::path& path);
+// A render passes its device's limit on textures, so that an image too large for it is refused
+// before it is decoded.
+Scene loadScene(const std::filesystem::path& path, const TexelLimit& texelLimit = {});
 
 // The camera and light a bare OBJ gets: frames the bounding box of `scene.triangles`.
 void frameAutomatically(Scene& scene);
