@@ -109,6 +109,21 @@ std::string readInputLines(const std::filesystem::path& path, const std::string&
     const bool wide = text.rfind("\xFF\xFE", 0) == 0 || text.rfind("\xFE\xFF", 0) == 0 ||
                       text.rfind(std::string("\0\0\xFE\xFF", 4), 0) == 0;
     if (wide) throw inputError(path, 0, "cannot read " + what + ": it is UTF-16 or UTF-32 text; vitrum reads ASCII and UTF-8");
+    if (text.find('\r') != std::string::npos) {
+        std::size_t kept = 0;
+        for (std::size_t i = 0; i < text.size(); ++i) {
+            if (text[i] != '\r') {
+                text[kept++] = text[i];
+            } else if (i + 1 == text.size() || text[i + 1] != '\n') {
+                text[kept++] = '\n';
+            }
+        }
+        text.resize(kept);
+    }
+    if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
+        const int line = 1 + int(std::count(text.begin(), text.begin() + std::ptrdiff_t(nul), '\n'));
+        throw inputError(path, line, "cannot read " + what + ": a NUL byte; vitrum reads ASCII and UTF-8 text");
+    }
     return text;
 }
 

@@ -28,7 +28,10 @@ std::string readInputText(const std::filesystem::path& path, const std::string& 
 
 // readInputText for the line-based text formats (OBJ, MTL): a UTF-8 byte order mark is dropped
 // (tinyobjloader read "<BOM>v 0 0 5" as an unknown statement and lost the vertex, so every face
-// used the wrong vertices, without an error), and UTF-16 or UTF-32 text is refused by name.
+// used the wrong vertices, without an error), and UTF-16 or UTF-32 text is refused by name. Lines
+// end at "\n", "\r\n" or a lone "\r", as tinyobjloader reads them (a file of classic Mac lines was
+// one line to the MTL reader), and come back ending in "\n"; a NUL byte, where tinyobjloader
+// ends a line without a word (a quad became a triangle), is refused with its line.
 std::string readInputLines(const std::filesystem::path& path, const std::string& what, std::uint64_t maxBytes);
 
 }  // namespace vitrum

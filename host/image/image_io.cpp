@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -192,6 +193,18 @@ void checkStbDeclaredSize(const fs::path& path, const FileBytes& file, const Pix
     limit.check(path, "image", std::uint64_t(std::max(w, 0)), std::uint64_t(std::max(h, 0)));
 }
 
+// The size stb decoded must be the one its header parser declared, which the limits were checked
+// against (checkStbDeclaredSize): two parsers of one header must not disagree unseen.
+void requireDeclaredSize(const fs::path& path, const FileBytes& file, int width, int height) {
+    int w = 0;
+    int h = 0;
+    int n = 0;
+    if (!stbi_info_from_memory(file.data(), file.size(), &w, &h, &n) || w != width || h != height)
+        throw inputError(path, 0, "cannot read image: decoded as " + std::to_string(width) + "x" +
+                                      std::to_string(height) + " pixels, but its header declares " + std::to_string(w) +
+                                      "x" + std::to_string(h));
+}
+
 Image readLinearHdr(const fs::path& path, const FileBytes& file) {
     int w = 0;
     int h = 0;
@@ -202,6 +215,8 @@ Image readLinearHdr(const fs::path& path, const FileBytes& file) {
                                       " pixels need more data than the file holds");
     float* data = stbi_loadf_from_memory(file.data(), file.size(), &w, &h, &n, 3);
     if (!data) throw inputError(path, 0, "cannot read image: " + stbReason());
+    std::unique_ptr<float, void (*)(void*)> owned(data, stbi_image_free);
+    requireDeclaredSize(path, file, w, h);
     Image image(static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h));
     bool nonFinite = false;
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
@@ -214,7 +229,6 @@ Image readLinearHdr(const fs::path& path, const FileBytes& file) {
             image.pixels[i][c] = v;
         }
     }
-    stbi_image_free(data);
     if (nonFinite) warn(path.string() + ": non-finite pixel values read as 0");
     return image;
 }
@@ -240,22 +254,24 @@ Image readSrgb(const fs::path& path, const FileBytes& file) {
     if (stbi_is_16_bit_from_memory(file.data(), file.size())) {
         stbi_us* data = stbi_load_16_from_memory(file.data(), file.size(), &w, &h, &n, 3);
         if (!data) throw inputError(path, 0, "cannot read image: " + stbReason());
+        std::unique_ptr<stbi_us, void (*)(void*)> owned(data, stbi_image_free);
+        requireDeclaredSize(path, file, w, h);
         Image image(static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h));
         for (std::size_t i = 0; i < image.pixels.size(); ++i) {
             for (int c = 0; c < 3; ++c) image.pixels[i][c] = srgbToLinear(float(data[i * 3 + c]) / 65535.0f);
         }
-        stbi_image_free(data);
         return image;
     }
     stbi_uc* data = stbi_load_from_memory(file.data(), file.size(), &w, &h, &n, 3);
     if (!data) throw inputError(path, 0, "cannot read image: " + stbReason());
+    std::unique_ptr<stbi_uc, void (*)(void*)> owned(data, stbi_image_free);
+    requireDeclaredSize(path, file, w, h);
     float table[256];
     for (int i = 0; i < 256; ++i) table[i] = srgbToLinear(float(i) / 255.0f);
     Image image(static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h));
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
         for (int c = 0; c < 3; ++c) image.pixels[i][c] = table[data[i * 3 + c]];
     }
-    stbi_image_free(data);
     return image;
 }
 

@@ -54,9 +54,10 @@ std::size_t exponentDigits(std::string_view number) {
 // with overflows) are checked here first. Also notes the
 // mtllib and usemtl statements, and a line that can hold an inserted mtllib statement.
 struct ObjScan {
-    // The v, vn and vt statements: what tinyobjloader returns is checked against them, since a line
-    // it reads differently from this scan would shift every index after it, without an error.
-    std::size_t vertices = 0, normals = 0, texcoords = 0;
+    // The v, vn, vt and f statements (faces of three corners or more) and the faces' corners: what
+    // tinyobjloader returns is checked against them, since a line it reads differently from this
+    // scan would shift every index after it, or change a face, without an error.
+    std::size_t vertices = 0, normals = 0, texcoords = 0, faces = 0, corners = 0;
     std::vector<std::size_t> skinWeights;  // where each "vw" statement begins
     bool hasMtllib = false;
     std::vector<std::string> usemtlNames;
@@ -69,8 +70,7 @@ ObjScan scanObj(const fs::path& file, std::string_view text) {
     int lineNumber = 0;
     for (std::size_t begin = 0; begin < text.size();) {
         std::size_t end = std::min(text.find('\n', begin), text.size());
-        std::string_view line = text.substr(begin, end - begin);
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        std::string_view line = text.substr(begin, end - begin);  // readInputLines ended every line in '\n'
         ++lineNumber;
         std::size_t wordEnd = 0;
         std::string_view word = firstWord(line, &wordEnd);
@@ -95,12 +95,15 @@ ObjScan scanObj(const fs::path& file, std::string_view text) {
                 rest = rest.substr(numberEnd);
             }
         } else if (word == "f") {
-            // tinyobjloader reads indices with atoi: one beyond the int range wraps around to an
-            // index that may be valid ("4294967299" is vertex 3).
+            // tinyobjloader reads indices with atoi, which stops where a number does ("1.5" is
+            // vertex 1) and wraps one beyond the int range around ("4294967299" is vertex 3): each
+            // index must be an integer in full, in the int range.
+            std::size_t corners = 0;
             for (std::string_view rest = line.substr(wordEnd);;) {
                 std::size_t cornerEnd = 0;
                 std::string_view corner = firstWord(rest, &cornerEnd);
                 if (corner.empty()) break;
+                ++corners;
                 for (std::size_t part = 0; part <= corner.size();) {
                     std::size_t slash = std::min(corner.find('/', part), corner.size());
                     std::string_view index = corner.substr(part, slash - part);
@@ -110,23 +113,44 @@ ObjScan scanObj(const fs::path& file, std::string_view text) {
                     if (ec == std::errc::result_out_of_range || value > std::numeric_limits<int>::max() ||
                         value < -std::numeric_limits<int>::max())
                         throw inputError(file, lineNumber, "face index " + quoteInput(index) + " is out of range");
+                    if (ptr != index.data() + index.size())  // an empty one tinyobjloader reports as 0
+                        throw inputError(file, lineNumber, "face corner " + quoteInput(corner) +
+                                                               " is not v, v/vt, v//vn or v/vt/vn in integers");
                     part = slash + 1;
                 }
                 rest = rest.substr(cornerEnd);
+            }
+            if (corners >= 3) {  // tinyobjloader drops a face of fewer, with a warning
+                ++scan.faces;
+                scan.corners += corners;
             }
         } else if (word == "vn" || word == "vt" || word == "vp") {
             if (word == "vn") ++scan.normals;
             if (word == "vt") ++scan.texcoords;
             // tinyobjloader reads an exponent into an int that overflows (undefined behaviour) at
-            // ten digits or more (found by fuzzing); such a number is 0 or infinite anyway.
+            // ten digits or more (found by fuzzing); such a number is 0 or infinite anyway. It
+            // reads a normal's or a texture coordinate's word that is no number as 0, without an
+            // error: those must be numbers, three for vn and one to three for vt.
+            const bool checked = word != "vp";
+            int numbers = 0;
             for (std::string_view rest = line.substr(wordEnd);;) {
                 std::size_t numberEnd = 0;
                 std::string_view number = firstWord(rest, &numberEnd);
-                if (number.empty()) break;
+                if (number.empty() || number.front() == '#') break;
                 if (exponentDigits(number) > 9)
                     throw inputError(file, lineNumber, "the exponent of " + quoteInput(number) + " is out of range");
+                float value = 0.0f;
+                if (checked && numbers < 3 && readFloat(number, value) != FloatText::Number)
+                    throw inputError(file, lineNumber,
+                                     std::string(word) + " expects numbers, got " + quoteInput(number) +
+                                         (readFloat(number, value) == FloatText::NotFinite ? ", which is not finite" : ""));
+                ++numbers;
                 rest = rest.substr(numberEnd);
             }
+            if (word == "vn" && numbers < 3)
+                throw inputError(file, lineNumber, "vn expects three numbers, got " + quoteInput(line));
+            if (word == "vt" && numbers < 1)
+                throw inputError(file, lineNumber, "vt expects one to three numbers, got " + quoteInput(line));
         } else if (word == "vw") {
             scan.skinWeights.push_back(begin + std::size_t(word.data() - line.data()));
         } else if (word == "mtllib") {
@@ -288,9 +312,16 @@ void ObjLoader::load(const fs::path& objFile, const ObjOptions& options) {
     const int vertexCount = int(attrib.vertices.size() / 3);
     const int normalCount = int(attrib.normals.size() / 3);
     const int uvCount = int(attrib.texcoords.size() / 2);
+    std::size_t faceCount = 0, cornerCount = 0;
+    for (const tinyobj::shape_t& shape : shapes) {
+        faceCount += shape.mesh.num_face_vertices.size();
+        cornerCount += shape.mesh.indices.size();
+    }
     for (const auto& [kind, read, lines] : {std::tuple{"vertices", std::size_t(vertexCount), scan.vertices},
                                             std::tuple{"normals", std::size_t(normalCount), scan.normals},
-                                            std::tuple{"texture coordinates", std::size_t(uvCount), scan.texcoords}})
+                                            std::tuple{"texture coordinates", std::size_t(uvCount), scan.texcoords},
+                                            std::tuple{"faces", faceCount, scan.faces},
+                                            std::tuple{"face corners", cornerCount, scan.corners}})
         if (read != lines)
             throw inputError(objFile, 0, std::string("the OBJ reader returned ") + std::to_string(read) + " " + kind +
                                              " where the file has " + std::to_string(lines) +

@@ -2,6 +2,7 @@
 // MTL, JSON scene, image, path, a scene too large for the device) the command exits with 1, its
 // message names the file (and the line where there is one), and no output file is left behind.
 // Unknown keys and unreadable textures are the exceptions that only warn.
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -85,9 +86,12 @@ TEST_F(CliBadInput, BinaryGarbageIsAnError) {
         expectRefused(write("garbage.obj", randomBytes(4096, seed)), {"garbage.obj"});
         expectRefused(write("garbage.json", randomBytes(4096, seed)), {"garbage.json", "invalid JSON"});
     }
-    // Garbage after a Kd key: the number is malformed at line 2.
+    // Garbage after a Kd key: the number is malformed at line 2 (NUL bytes, refused with their
+    // line wherever they are, become 'x').
     write("m.obj", "mtllib garbage.mtl\nusemtl a\n" + kTriangle);
-    write("garbage.mtl", "newmtl a\nKd " + randomBytes(4096, 4));
+    std::string garbage = randomBytes(4096, 4);
+    std::replace(garbage.begin(), garbage.end(), '\0', 'x');
+    write("garbage.mtl", "newmtl a\nKd " + garbage);
     expectRefused(path("m.obj"), {"garbage.mtl:2:", "Kd"});
 }
 

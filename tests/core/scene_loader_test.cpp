@@ -148,6 +148,38 @@ TEST(SceneObj, AByteOrderMarkLosesNoVertexAndUtf16IsRefused) {
     }
 }
 
+// Lines that tinyobjloader read differently from what they say, without an error: a lone "\r"
+// ends a line for it (and now for the MTL reader, which read such a file as one line), a NUL
+// byte ended a face early (a quad became a triangle), "1.5" was vertex 1, and a normal or texture
+// coordinate that is no number was 0.
+TEST(SceneObj, TextTheObjReaderReadDifferentlyIsReadAsWrittenOrRefused) {
+    fs::path dir = tempDir();
+    write(dir / "mac.mtl", "newmtl a\rshader 2\rKd 0.25 0.5 1\r");
+    fs::path mac = write(dir / "mac.obj", "mtllib mac.mtl\rusemtl a\rv 0 0 0\rv 1 0 0\rv 1 1 0\r\nv 0 1 0\rf 1 2 3 4\r");
+    const Scene scene = loadScene(mac);
+    EXPECT_EQ(scene.triangles.size(), 2u);
+    ASSERT_EQ(scene.materials.size(), 1u);
+    expectVec3Near(scene.materials[0].diffuse, glm::vec3(srgbToLinear(0.25f), srgbToLinear(0.5f), 1.0f), 1e-7f);
+
+    const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+    fs::path obj = write(dir / "nul.obj", quad + "f 1 2 3" + std::string(1, '\0') + " 4\n");
+    expectInputError([&] { loadScene(obj); }, {"nul.obj:5:", "a NUL byte"});
+    write(dir / "nul.mtl", "newmtl a\nKd 1 1 1" + std::string(1, '\0') + "\n");
+    obj = write(dir / "nul_mtl.obj", "mtllib nul.mtl\nusemtl a\n" + quad + "f 1 2 3\n");
+    expectInputError([&] { loadScene(obj); }, {"nul.mtl:2:", "a NUL byte"});
+    for (const char* face : {"f 1.5 2 3", "f 1 2 3x", "f 1/1.0 2 3", "f 1 2\v4 3", "f 1 2 3 # the face"}) {
+        obj = write(dir / "corner.obj", quad + "vt 0 0\n" + face + "\n");
+        expectInputError([&] { loadScene(obj); }, {"corner.obj:6:", "face corner", "in integers"});
+    }
+    for (const char* line : {"vn 0 0 x", "vn 0 0", "vt u", "vt", "vn 0 0 1e99"}) {
+        obj = write(dir / "number.obj", quad + line + "\nf 1 2 3\n");
+        expectInputError([&] { loadScene(obj); }, {"number.obj:5:", std::string(line).substr(0, 2) + " expects"});
+    }
+    // What OBJ allows stays read: vt with one to three numbers, a comment after them, + signs.
+    obj = write(dir / "fine.obj", quad + "vt 0.5\nvt 0.5 0.5 0 # w\nvn +0 0 1\nf 1/1/1 2/2/1 +3/+1/+1\n");
+    EXPECT_EQ(loadScene(obj).triangles.size(), 1u);
+}
+
 TEST(SceneObj, ZeroAreaTriangleIsKeptWithAUnitNormal) {
     fs::path obj = write(tempDir() / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
     Scene scene = loadScene(obj);
@@ -159,7 +191,9 @@ TEST(SceneObj, ZeroAreaTriangleIsKeptWithAUnitNormal) {
 // refused as "not a finite number").
 TEST(SceneObj, CoordinatesTooSmallForAFloatAreZero) {
     fs::path dir = tempDir();
-    for (const char* tiny : {"1e-50", "-1e-50", "1e-400"}) {
+    // Beyond long double's range too (it was "not a finite number"), by the digits' places.
+    for (const char* tiny : {"1e-50", "-1e-50", "1e-400", "1e-999999999", "-0.0001e-99999", "12345e-99999",
+                             "1e-99999999999999999999"}) {
         fs::path obj = write(dir / "tiny.obj", std::string("v ") + tiny + " 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n");
         const Scene scene = loadScene(obj);
         ASSERT_EQ(scene.triangles.size(), 1u) << tiny;
@@ -176,7 +210,7 @@ TEST(SceneObj, CoordinatesTooSmallForAFloatAreZero) {
 
 TEST(SceneObj, NonFiniteCoordinatesAreErrorsWithLine) {
     fs::path dir = tempDir();
-    for (const char* bad : {"nan", "inf", "-inf", "1e39"}) {
+    for (const char* bad : {"nan", "inf", "-inf", "1e39", "1e999999999", "0.0001e99999"}) {
         fs::path obj = write(dir / "bad.obj", std::string("# comment\nv 0 0 0\nv 1 ") + bad + " 0\nv 0 1 0\nf 1 2 3\n");
         expectInputError([&] { loadScene(obj); }, {"bad.obj:3:", "not a finite number"});
     }
