@@ -8,6 +8,7 @@
 #include "bindings.glsl"
 #include "specialization.glsl"
 #include "ieee_vector_math.glsl"
+#include "optics.glsl"
 
 // IOR of the medium inside the innermost of `count` objects in `media`, or of the scene's air.
 float ior(uvec4 media, uint count) {
@@ -22,6 +23,16 @@ vec3 mediumAttenuation(PendingRay r) {
     if (!kAbsorption) return vec3(0.0);
     uint count = mediaCount(r);
     return count == 0u ? vec3(0.0) : objectMedium(r.media[count - 1u]).xyz;
+}
+
+// Beer-Lambert over the stretch between the un-offset point `start` a new ray leaves from and its
+// offset origin. A ray's length in a medium is measured from un-offset point to un-offset point,
+// its t from its origin: the ray's weight takes this factor as it is made, so that finishTrace's
+// exp(-mu t) completes exp(-mu (t + skipped)) (docs/render-model-decisions.md, "Absorption
+// lengths"). Exactly 1 where nothing absorbs.
+vec3 skippedTransmittance(PendingRay r, vec3 start) {
+    if (!kAbsorption) return vec3(1.0);
+    return beerLambert(mediumAttenuation(r), ieeeDot(r.origin.xyz - start, r.direction.xyz));
 }
 
 // The medium stack, written without loops: every loop iteration counts against lavapipe's limit.

@@ -10,6 +10,7 @@
 #include "bvh.glsl"
 #include "camera.glsl"
 #include "ray_offset.glsl"
+#include "media.glsl"
 #include "ieee_vector_math.glsl"
 
 void beginRay() {
@@ -32,6 +33,7 @@ void startPrimaryRay(uvec2 pixel) {
     st.ray.direction = vec4(d, uintBitsToFloat(usesMaterial(kMaterialGlass) ? media : 0u));
     st.ray.weight = vec4(1.0);
     st.ray.media = behind ? params.cameraMediaBehind : params.cameraMedia;  // innermost last
+    st.ray.weight.xyz *= skippedTransmittance(st.ray, cameraPosition());
     st.pendingRays = 0u;
     if (maxDepth() == 0u) {
         // max_depth 0: not even the primary ray is traced (render model); the sample is black.

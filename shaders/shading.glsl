@@ -226,6 +226,7 @@ void scatter(GpuMaterial m) {
         } else {
             PendingRay refracted = childRay(transmittedOrigin, refractDirection(d, n, eta, cos2t), w * (1.0 - r), media,
                                             count, depth + 1u);
+            refracted.weight.xyz *= skippedTransmittance(refracted, through);
             storePendingRay(pendingRayIndex(st.pendingRays), refracted);
             st.pendingRays += 1u;
             counters.refractionRays += 1u;
@@ -238,6 +239,7 @@ void scatter(GpuMaterial m) {
     // neither max_depth nor min_weight stops it (as on the CPU).
     if (matched || admitChild(rayDepth(next), next.weight.xyz)) {
         if (!matched) counters.reflectionRays += 1u;
+        next.weight.xyz *= skippedTransmittance(next, matched ? through : p);
         st.ray = next;
         beginRay();
     } else {

@@ -6,6 +6,8 @@
 //     o + t d: its error scales with the triangle, not with the ray's length);
 //   - new rays start at offsetRayOrigin(p, n_g) on the side they go to, with tMin = 0, with the
 //     offsets scaled to the scene exactly as makeRenderParams scales the GPU's (rayOffsetScale);
+//   - Beer-Lambert's length runs from the un-offset point a ray leaves from: t plus the offset's
+//     share along the ray (the GPU puts that share's factor into the new ray's weight);
 //   - a shadow ray runs from the offset point to the light as o + t (light - o), 0 < t < 1, any hit;
 //   - the ambient term of a light is not attenuated by inverse-square fall-off, the direct term is;
 //   - a light's shadow ray is traced only when its direct term is not zero.
@@ -103,7 +105,7 @@ public:
             counters.primaryRays += 1;
             // Off the surface the camera lies on, if any, on the ray's side (analysis/camera_surface.h).
             const bool behind = glm::dot(d, cameraSurface_) < Real(0);
-            sum += trace(primaryRayOrigin(cameraFrom_, cameraSurface_, d, offsetScale_), d, 0,
+            sum += trace(cameraFrom_, primaryRayOrigin(cameraFrom_, cameraSurface_, d, offsetScale_), d, 0,
                          behind ? cameraMediaBehind_ : cameraMedia_, Color(1), counters);
         }
         return sum / Real(n);
@@ -120,10 +122,11 @@ private:
         std::uint32_t object;
     };
 
-    // Radiance arriving at the ray's origin along direction d (unit). `weight` is the product of
-    // the path factors so far, used only for min_weight.
-    Color trace(const Vec3& origin, const Vec3& d, std::uint32_t depth, const MediumStack& media, const Color& weight,
-                TraceCounters& counters) const {
+    // Radiance arriving at the ray's origin along direction d (unit). `start` is the un-offset point
+    // the ray leaves from (`origin` is offset off its surface); `weight` is the product of the path
+    // factors so far, used only for min_weight.
+    Color trace(const Vec3& start, const Vec3& origin, const Vec3& d, std::uint32_t depth, const MediumStack& media,
+                const Color& weight, TraceCounters& counters) const {
         Ray<Real> ray{origin, d, Real(0), std::numeric_limits<Real>::max()};
         counters.logRay(ray, false);
         counters.maxRayDepth = std::max<std::uint64_t>(counters.maxRayDepth, depth);
@@ -143,8 +146,10 @@ private:
             return escaped;
         }
         const Hit hit = describeHit(*found, d);
-        // Beer-Lambert over the segment just travelled; air (mu = 0) gives 1 (lecture: l = 0 in air).
-        const Color transmittance = optics::beerLambert(mu, hit.t);
+        // Beer-Lambert over the segment just travelled, from un-offset point to un-offset point
+        // (docs/render-model-decisions.md, "Absorption lengths"); air (mu = 0) gives 1 (lecture: l = 0
+        // in air).
+        const Color transmittance = optics::beerLambert(mu, hit.t + glm::dot(origin - start, d));
         const Color w = weight * transmittance;
         Color colour;
         switch (hit.material->model) {
@@ -263,12 +268,13 @@ private:
     Color traceReflection(const Hit& hit, const Vec3& d, std::uint32_t depth, const MediumStack& media,
                           const Color& weight, TraceCounters& counters) const {
         const Vec3 origin = offsetRayOrigin(hit.position, hit.geometricNormal, offsetScale_);
-        return traceChild(origin, optics::reflect(d, hit.shadingNormal), depth, media, weight, true, counters);
+        return traceChild(hit.position, origin, optics::reflect(d, hit.shadingNormal), depth, media, weight, true,
+                          counters);
     }
 
     // A secondary ray of depth + 1, unless max_depth or min_weight stops it (both counted).
-    Color traceChild(const Vec3& origin, const Vec3& direction, std::uint32_t depth, const MediumStack& media,
-                     const Color& weight, bool reflection, TraceCounters& counters) const {
+    Color traceChild(const Vec3& start, const Vec3& origin, const Vec3& direction, std::uint32_t depth,
+                     const MediumStack& media, const Color& weight, bool reflection, TraceCounters& counters) const {
         if (depth + 1 >= maxDepth_) {
             counters.depthLimitHits += 1;
             return Color(0);
@@ -279,7 +285,7 @@ private:
         }
         if (reflection) counters.reflectionRays += 1;
         else counters.refractionRays += 1;
-        return trace(origin, direction, depth + 1, media, weight, counters);
+        return trace(start, origin, direction, depth + 1, media, weight, counters);
     }
 
     // ---- Glass -------------------------------------------------------------------------------
@@ -327,7 +333,7 @@ private:
         if (n1 == n2) {
             // Index-matched: no optical interface. The same ray goes on, at the same depth, with the
             // updated stack (render model, "The ray tree").
-            return trace(offsetRayOrigin(through, -facing, offsetScale_), d, depth, inside, weight, counters);
+            return trace(through, offsetRayOrigin(through, -facing, offsetScale_), d, depth, inside, weight, counters);
         }
         const Real eta = n1 / n2;
         const Real cosI = -glm::dot(d, n);
@@ -337,12 +343,12 @@ private:
         if (refracted) {
             const Color wt = weight * (Real(1) - r);
             const Vec3 origin = offsetRayOrigin(through, -facing, offsetScale_);
-            colour += (Real(1) - r) * traceChild(origin, *refracted, depth, inside, wt, false, counters);
+            colour += (Real(1) - r) * traceChild(through, origin, *refracted, depth, inside, wt, false, counters);
         } else {
             counters.totalInternalReflections += 1;  // R = 1 (the Fresnel functions return it)
         }
         // The reflected ray stays in the medium it came from: it keeps the old stack.
-        colour += r * traceChild(offsetRayOrigin(hit.position, facing, offsetScale_), optics::reflect(d, n), depth,
+        colour += r * traceChild(hit.position, offsetRayOrigin(hit.position, facing, offsetScale_), optics::reflect(d, n), depth,
                                  media, weight * r, true, counters);
         return colour;
     }

@@ -14,8 +14,7 @@
 //     which matters far from the origin: a scene moved 1e4 units away (ulps of 1e-3) would
 //     otherwise restart its rays 0.25 units off the surface (docs/hard-cases.md);
 //   - absolute offset E / 2^23: exactly 32 ulps of E / 32 when E is a power of two, so the offset
-//     does not jump at the region's edge. Small offsets also keep what every restart inside an
-//     absorbing medium loses (mu x offset of path) negligible.
+//     does not jump at the region's edge.
 // Both are exact scalings of E, so a scene scaled by s gets offsets scaled by s (exactly for a
 // power of two). The host passes the same two numbers to the GPU in RenderParams.offsets
 // (makeRenderParams). RayOffsetScale{} keeps the chapter's own constants.

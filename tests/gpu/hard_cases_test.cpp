@@ -425,6 +425,45 @@ TEST(HardCaseSlab, CentrePixelIsTheInternalReflectionSeriesOnBothBackends) {
     EXPECT_NEAR(slabSeries(r, 400), 1.0, 1e-12);                  // R + T^2 / (1 - R) = 1: energy kept
 }
 
+// The same series through an absorbing slab: each crossing of it multiplies by
+// A = exp(-mu thickness), so the light leaving after k internal reflections is T^2 R^k A^(k + 1).
+double absorbingSlabSeries(double r, double a, unsigned maxDepth) {
+    const double t = 1.0 - r;
+    double sum = maxDepth >= 2 ? r : 0.0;
+    for (unsigned k = 0; k + 2 < maxDepth; ++k) sum += t * t * std::pow(r, double(k)) * std::pow(a, double(k + 1));
+    return sum;
+}
+
+// Beer-Lambert's length runs between un-offset hit points (docs/render-model-decisions.md, §6).
+// A far, small box makes the scene 1,000 units wide, so every ray restarting in the slab starts
+// E / 2^23 = 1.2e-4 off its surface: lengths measured from there lost 0.12% of the 0.1 thickness
+// a crossing, 4.8e-4 of the transmittance at mu = 4.
+TEST(HardCaseSlab, AnAbsorbingSlabInALargeSceneIsTheSeriesWithExactLengths) {
+    const double r = std::pow((1.5 - 1.0) / (1.5 + 1.0), 2.0);
+    constexpr float kThickness = 0.1f;
+    constexpr float kMu = 4.0f;
+    const double a = std::exp(-double(kMu) * double(kThickness));
+    for (unsigned maxDepth : {3u, 10u}) {
+        SCOPED_TRACE("max_depth " + std::to_string(maxDepth));
+        Scene scene = slabScene(kThickness, maxDepth);
+        scene.materials[0].attenuation = vec3(kMu, kMu / 2, 0.0f);  // blue is clear: the series of R alone
+        scene.materials.push_back(material(MaterialModel::Lambert, vec3(0.5f)));
+        scene.objectNames.push_back("far");
+        addBox(scene, {-998.1f, 0.0f, 0.0f}, {-998.0f, 0.1f, 0.1f}, 1, 1);  // off every ray of the centre pixel
+        ASSERT_NEAR(rayOffsetScale(scene.triangles).absolute, 1000.1f / 8388608.0f, 1e-9f);
+        RenderPair p = renderBoth(scene);
+        const double red = absorbingSlabSeries(r, a, maxDepth);
+        const double green = absorbingSlabSeries(r, std::exp(-double(kMu / 2) * double(kThickness)), maxDepth);
+        for (const Image* image : {&p.gpu, &p.cpu}) {
+            const vec3 centre = image->at(4, 4);
+            EXPECT_NEAR(centre.x, red, 1e-6 * red) << (image == &p.gpu ? "GPU" : "CPU");
+            EXPECT_NEAR(centre.y, green, 1e-6 * green) << (image == &p.gpu ? "GPU" : "CPU");
+            EXPECT_NEAR(centre.z, slabSeries(r, maxDepth), 2e-6) << (image == &p.gpu ? "GPU" : "CPU");
+        }
+        EXPECT_EQ(p.gpuStats.rayStackOverflows, 0u);
+    }
+}
+
 // ---- Scale and translation -----------------------------------------------------------------
 
 // A glass sphere and a glass block (absorbing) on a Lambert floor with a light, 10 units across.
