@@ -1,10 +1,12 @@
 #include "analysis/scene_features.h"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <map>
 #include <set>
-#include <unordered_map>
+#include <tuple>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -32,59 +34,69 @@ std::vector<DoubleBox> glassObjectBoxes(const Scene& scene) {
     return result;
 }
 
-// A directed edge between two vertex positions, compared bit for bit (an OBJ's shared vertices
-// have identical positions in every triangle that uses them).
+// An edge between two vertex positions, compared bit for bit (an OBJ's shared vertices have
+// identical positions in every triangle that uses them): its ends in a fixed order (the smaller
+// bits first) and whether a triangle runs along it the other way.
 struct Edge {
-    std::uint32_t bits[6];
-    bool operator==(const Edge& o) const { return std::memcmp(bits, o.bits, sizeof(bits)) == 0; }
-};
-
-struct EdgeHash {
-    std::size_t operator()(const Edge& e) const {
-        std::size_t h = 1469598103934665603ull;
-        for (std::uint32_t b : e.bits) h = (h ^ b) * 1099511628211ull;
-        return h;
-    }
+    std::array<std::uint32_t, 6> bits;
+    bool backwards;
+    bool operator<(const Edge& o) const { return std::tie(bits, backwards) < std::tie(o.bits, o.backwards); }
 };
 
 Edge edge(const glm::vec3& a, const glm::vec3& b) {
-    Edge e;
-    std::memcpy(e.bits, &a, 12);
-    std::memcpy(e.bits + 3, &b, 12);
+    std::array<std::uint32_t, 3> from, to;
+    std::memcpy(from.data(), &a, 12);
+    std::memcpy(to.data(), &b, 12);
+    const bool backwards = to < from;
+    if (backwards) std::swap(from, to);
+    Edge e{{}, backwards};
+    std::copy(from.begin(), from.end(), e.bits.begin());
+    std::copy(to.begin(), to.end(), e.bits.begin() + 3);
     return e;
 }
 
-Edge reversed(const Edge& e) {
-    Edge r;
-    std::memcpy(r.bits, e.bits + 3, 12);
-    std::memcpy(r.bits + 3, e.bits, 12);
-    return r;
+// Whether the edges of one object's triangles make a closed, consistently wound mesh: every edge
+// between two different points run along exactly twice, once each way. Sorted, not hashed: a hash
+// map of a million-triangle object's edges took seconds and twice the memory.
+bool closedMesh(std::vector<Edge>& edges) {
+    if (edges.size() % 2 != 0) return false;
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t i = 0; i < edges.size(); i += 2) {
+        const Edge& forwards = edges[i];
+        const Edge& back = edges[i + 1];
+        const bool point = std::equal(forwards.bits.begin(), forwards.bits.begin() + 3, forwards.bits.begin() + 3);
+        if (point || forwards.backwards || !back.backwards || forwards.bits != back.bits) return false;
+        if (i + 2 < edges.size() && edges[i + 2].bits == forwards.bits) return false;  // a third time
+    }
+    return true;
 }
-
-}  // namespace
-
-namespace {
 
 // The objects whose triangles that `counts` are not a closed, consistently wound mesh.
 template <class Counts>
 std::set<std::uint32_t> openObjects(const Scene& scene, Counts counts) {
-    std::map<std::uint32_t, std::unordered_map<Edge, int, EdgeHash>> edges;
-    for (const Triangle& t : scene.triangles) {
-        if (!counts(t)) continue;
-        auto& objectEdges = edges[t.object];
-        for (int i = 0; i < 3; ++i) objectEdges[edge(t.position[i], t.position[(i + 1) % 3])] += 1;
-    }
+    // The counted triangles object by object (a loader writes each object's triangles in a run,
+    // which the stable sort keeps), so that one object's edges are held at a time.
+    std::vector<std::uint32_t> order;
+    order.reserve(scene.triangles.size());
+    for (std::uint32_t i = 0; i < scene.triangles.size(); ++i)
+        if (counts(scene.triangles[i])) order.push_back(i);
+    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return scene.triangles[a].object < scene.triangles[b].object;
+    });
     std::set<std::uint32_t> open;
-    for (const auto& objectAndEdges : edges) {
-        // Not a structured binding: C++20 lets a lambda capture one, but clang only from version
-        // 16 on, and the fuzz build's clang is Debian 12's 14.
-        const auto& objectEdges = objectAndEdges.second;
-        const bool closed = std::all_of(objectEdges.begin(), objectEdges.end(), [&](const auto& entry) {
-            const Edge reverse = reversed(entry.first);
-            const auto found = objectEdges.find(reverse);
-            return entry.second == 1 && !(reverse == entry.first) && found != objectEdges.end() && found->second == 1;
-        });
-        if (!closed) open.insert(objectAndEdges.first);
+    std::vector<Edge> edges;
+    for (std::size_t first = 0; first < order.size();) {
+        const std::uint32_t object = scene.triangles[order[first]].object;
+        std::size_t end = first;
+        while (end < order.size() && scene.triangles[order[end]].object == object) ++end;
+        edges.clear();
+        edges.reserve(3 * (end - first));
+        for (std::size_t k = first; k < end; ++k) {
+            const Triangle& t = scene.triangles[order[k]];
+            for (int i = 0; i < 3; ++i) edges.push_back(edge(t.position[i], t.position[(i + 1) % 3]));
+        }
+        if (!closedMesh(edges)) open.insert(object);
+        first = end;
     }
     return open;
 }

@@ -503,12 +503,15 @@ void renderRows(const Scene& scene, const Bvh& bvh, unsigned threadCount, const 
 }  // namespace
 
 Image renderReference(const Scene& scene, const Bvh& bvh, const ReferenceOptions& options, RenderStats& stats) {
+    const auto analysisStart = std::chrono::steady_clock::now();
+    stats.features = analyseScene(scene);
+    stats.addPhase("analysis",
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - analysisStart).count());
     const auto start = std::chrono::steady_clock::now();
     unsigned threads = options.threads != 0 ? options.threads : std::thread::hardware_concurrency();
     threads = std::max(1u, std::min(threads, std::max(1u, scene.camera.height)));
     Image image(scene.camera.width, scene.camera.height);
     stats.backend = "cpu";
-    stats.features = analyseScene(scene);
     stats.device = std::string("CPU reference (") + (options.doublePrecision ? "double" : "float") + "), " +
                    std::to_string(threads) + (threads == 1 ? " thread" : " threads");
     if (options.doublePrecision) renderRows<double>(scene, bvh, threads, options, image, stats);

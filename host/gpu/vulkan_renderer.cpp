@@ -241,7 +241,9 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
                          " for every pixel to finish");
     stats.backend = "vulkan";
     stats.device = device.name();
+    const auto analysisStart = Clock::now();
     stats.features = analyseScene(scene);
+    stats.addPhase("analysis", secondsSince(analysisStart));
     const TraceSpecialization kernel =
         options.specialize ? TraceSpecialization::forScene(scene, stats.features) : TraceSpecialization::general();
     stats.kernel = kernel;

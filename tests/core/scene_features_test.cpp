@@ -180,6 +180,21 @@ TEST(SceneFeatures, OpenOrBadlyWoundGlassGetsTheWholeMediumStack) {
     addGlassBox(duplicated, {0, 0, 0}, {1, 1, 1});
     duplicated.triangles.push_back(duplicated.triangles[0]);
     EXPECT_EQ(analyseScene(duplicated).openGlassObjects, 1u);
+    Scene degenerate = glassScene();  // a triangle with an edge from a point to itself
+    addGlassBox(degenerate, {0, 0, 0}, {1, 1, 1});
+    Triangle sliver = degenerate.triangles[0];
+    sliver.position[1] = sliver.position[0];
+    degenerate.triangles.push_back(sliver);
+    EXPECT_EQ(analyseScene(degenerate).openGlassObjects, 1u);
+    // Two closed boxes whose triangles come interleaved, not object by object: both closed.
+    Scene interleaved = glassScene();
+    addGlassBox(interleaved, {0, 0, 0}, {1, 1, 1});
+    addGlassBox(interleaved, {3, 0, 0}, {4, 1, 1});
+    const std::size_t half = interleaved.triangles.size() / 2;
+    for (std::size_t i = 1; i < half; i += 2) std::swap(interleaved.triangles[i], interleaved.triangles[half + i]);
+    EXPECT_EQ(analyseScene(interleaved).openGlassObjects, 0u);
+    interleaved.triangles.erase(interleaved.triangles.begin() + 1);  // a triangle of the second box
+    EXPECT_EQ(analyseScene(interleaved).openGlassObjects, 1u);
 }
 
 TEST(SceneFeatures, PendingRayStackFollowsMaxDepthUpToTheGpuStackWithGlassOnly) {
