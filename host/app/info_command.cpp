@@ -6,6 +6,7 @@
 
 #include "app/arguments.h"
 #include "app/commands.h"
+#include "common/progress.h"
 #include "bvh/bvh.h"
 #include "common/error.h"
 #include "analysis/scene_features.h"
@@ -30,8 +31,10 @@ int infoCommand(int argc, char** argv, int first) {
                      "statistics of SCENE (.json or .obj).\n";
         return argc - first == 1 ? 0 : 1;
     }
-    Scene scene = loadScene(argv[first]);
-    Bvh bvh = buildBvh(scene.triangles);
+    PhaseProgress phases;
+    Scene scene = loadScene(argv[first], {.progress = phases.callback()});
+    Bvh bvh = buildBvh(scene.triangles, [&](double fraction) { phases.update("building the BVH", fraction); });
+    phases.finish();
     std::map<std::uint32_t, std::size_t> trianglesPerMaterial;
     for (const Triangle& t : scene.triangles) ++trianglesPerMaterial[t.material];
 

@@ -126,7 +126,8 @@ int renderCommand(int argc, char** argv, int first) {
     const double deviceSeconds = std::chrono::duration<double>(Clock::now() - start).count();
 
     auto loadStart = Clock::now();
-    Scene scene = loadScene(command.scenePath, texelLimit);
+    PhaseProgress phases;  // loading and building a big model take seconds (issue 52)
+    Scene scene = loadScene(command.scenePath, {texelLimit, phases.callback()});
     applyOverrides(command, scene);
     if (const std::string note = largeRenderNote(scene); !note.empty()) warn(note);
     const double loadSeconds = std::chrono::duration<double>(Clock::now() - loadStart).count();
@@ -137,10 +138,10 @@ int renderCommand(int argc, char** argv, int first) {
     Image image;
     Bvh bvh;
     try {
-        bvh = buildBvh(scene.triangles);
+        bvh = buildBvh(scene.triangles, [&](double fraction) { phases.update("building the BVH", fraction); });
         stats.addPhase("bvh", bvh.stats.buildSeconds);
-        ProgressBar progress("rendering");
-        auto onProgress = [&](double fraction) { progress.update(fraction); };
+        // The renderers report 0 as they begin to trace, after their analysis and upload.
+        auto onProgress = [&](double fraction) { phases.update("rendering", fraction); };
         if (command.backend == Backend::Vulkan) {
             stats.addPhase("device", deviceSeconds);
             command.gpu.progress = onProgress;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -29,7 +30,8 @@ struct Bvh {
     BvhStats stats;
 };
 
-Bvh buildBvh(std::span<const Triangle> triangles);
+// `progress`, when given, hears the share of the triangles placed in leaves so far, now and then.
+Bvh buildBvh(std::span<const Triangle> triangles, const std::function<void(double)>& progress = {});
 
 }  // namespace vitrum
 

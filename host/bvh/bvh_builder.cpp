@@ -60,7 +60,8 @@ std::uint32_t medianSplitDepth(std::uint32_t count) {
 
 class Builder {
 public:
-    Builder(std::span<const Triangle> triangles, Bvh& bvh) : bvh_(bvh) {
+    Builder(std::span<const Triangle> triangles, Bvh& bvh, const std::function<void(double)>& progress)
+        : bvh_(bvh), progress_(progress) {
         const std::size_t n = triangles.size();
         bounds_.resize(n);
         centroids_.resize(n);
@@ -138,6 +139,11 @@ private:
         node.boundsMin = glm::vec4(box.min, std::bit_cast<float>(first));
         node.boundsMax = glm::vec4(box.max, std::bit_cast<float>(count));
         bvh_.stats.leafCount += 1;
+        placed_ += count;
+        if (progress_ && placed_ >= nextReport_) {
+            progress_(double(placed_) / double(bvh_.triangleOrder.size()));
+            nextReport_ = placed_ + bvh_.triangleOrder.size() / 256 + 1;
+        }
         bvh_.stats.maxLeafTriangles = std::max(bvh_.stats.maxLeafTriangles, count);
         sahSum_ += area / rootArea_ * kIntersectionCost * count;
     }
@@ -249,15 +255,19 @@ private:
     std::vector<glm::vec3> centroids_;
     double rootArea_ = 1.0;
     double sahSum_ = 0.0;
+    const std::function<void(double)>& progress_;
+    std::size_t placed_ = 0;      // triangles in the leaves made so far
+    std::size_t nextReport_ = 0;  // progress_ hears of it when placed_ reaches this
 };
 
 }  // namespace
 
-Bvh buildBvh(std::span<const Triangle> triangles) {
+Bvh buildBvh(std::span<const Triangle> triangles, const std::function<void(double)>& progress) {
     const auto start = std::chrono::steady_clock::now();
     Bvh bvh;
-    Builder builder(triangles, bvh);
+    Builder builder(triangles, bvh, progress);
     builder.build();
+    if (progress) progress(1.0);
     bvh.stats.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return bvh;
 }

@@ -62,8 +62,12 @@ void requireRegularFile(const std::filesystem::path& path, const std::string& wh
     requireRegular(path, what, status);
 }
 
-std::vector<unsigned char> readInputFile(const std::filesystem::path& path, const std::string& what,
-                                         std::uint64_t maxBytes) {
+namespace {
+
+// The bytes of the file into a vector or straight into a string (a text file's bytes were read
+// into a vector, then copied into a string: twice a 100 MB OBJ's size at once).
+template <class Bytes>
+Bytes readBounded(const std::filesystem::path& path, const std::string& what, std::uint64_t maxBytes) {
     // O_NONBLOCK: opening a FIFO without a writer would wait for one; the check below refuses it.
     Descriptor file(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
     if (file.get() < 0) failToOpen(path, what, errno);
@@ -72,14 +76,14 @@ std::vector<unsigned char> readInputFile(const std::filesystem::path& path, cons
     requireRegular(path, what, status);
     const std::string tooLarge = what + " is larger than " + describeSize(maxBytes) + ", the most vitrum reads";
     if (std::uint64_t(status.st_size) > maxBytes) throw inputError(path, 0, tooLarge);
-    auto readSome = [&](unsigned char* into, std::size_t count) {
+    auto readSome = [&](void* into, std::size_t count) {
         for (;;) {
             const ssize_t n = ::read(file.get(), into, count);
             if (n >= 0) return std::size_t(n);
             if (errno != EINTR) throw inputError(path, 0, "cannot read " + what + " (" + std::strerror(errno) + ")");
         }
     };
-    std::vector<unsigned char> bytes(std::size_t(status.st_size));
+    Bytes bytes(std::size_t(status.st_size), 0);
     std::size_t filled = 0;
     while (filled < bytes.size()) {
         const std::size_t n = readSome(bytes.data() + filled, bytes.size() - filled);
@@ -90,7 +94,7 @@ std::vector<unsigned char> readInputFile(const std::filesystem::path& path, cons
         filled += n;
     }
     // A file that grew while being read (or that reports no size) is read on, to the limit.
-    unsigned char chunk[1 << 16];
+    char chunk[1 << 16];
     while (const std::size_t n = readSome(chunk, sizeof(chunk))) {
         if (bytes.size() + n > maxBytes) throw inputError(path, 0, tooLarge);
         bytes.insert(bytes.end(), chunk, chunk + n);
@@ -98,9 +102,15 @@ std::vector<unsigned char> readInputFile(const std::filesystem::path& path, cons
     return bytes;
 }
 
+}  // namespace
+
+std::vector<unsigned char> readInputFile(const std::filesystem::path& path, const std::string& what,
+                                         std::uint64_t maxBytes) {
+    return readBounded<std::vector<unsigned char>>(path, what, maxBytes);
+}
+
 std::string readInputText(const std::filesystem::path& path, const std::string& what, std::uint64_t maxBytes) {
-    const std::vector<unsigned char> bytes = readInputFile(path, what, maxBytes);
-    return std::string(bytes.begin(), bytes.end());
+    return readBounded<std::string>(path, what, maxBytes);
 }
 
 std::string readInputLines(const std::filesystem::path& path, const std::string& what, std::uint64_t maxBytes) {

@@ -51,4 +51,13 @@ void ProgressBar::finish() {
     }
 }
 
+void PhaseProgress::update(const std::string& phase, double fraction) {
+    if (!bar_ || phase != phase_) {
+        bar_.reset();  // finishes the phase before
+        phase_ = phase;
+        bar_ = std::make_unique<ProgressBar>(phase);
+    }
+    bar_->update(fraction);
+}
+
 }  // namespace vitrum

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
+#include <memory>
 #include <string>
 
 namespace vitrum {
@@ -29,6 +31,24 @@ private:
     bool enabled_;
     bool drawn_ = false;
     bool finished_ = false;
+};
+
+// Work done in phases that each report their own fraction ("parsing s3m.obj", then "building the
+// BVH"): the library reports through the callback, the command line draws the bars.
+using PhaseCallback = std::function<void(const std::string& phase, double fraction)>;
+
+// A ProgressBar a phase, the next one begun when the phase changes.
+class PhaseProgress {
+public:
+    void update(const std::string& phase, double fraction);
+    void finish() { bar_.reset(); }
+    PhaseCallback callback() {
+        return [this](const std::string& phase, double fraction) { update(phase, fraction); };
+    }
+
+private:
+    std::string phase_;
+    std::unique_ptr<ProgressBar> bar_;
 };
 
 }  // namespace vitrum

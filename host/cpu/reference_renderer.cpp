@@ -466,10 +466,11 @@ template <class Real>
 void renderRows(const Scene& scene, const Bvh& bvh, unsigned threadCount, const ReferenceOptions& options,
                 Image& image, RenderStats& stats) {
     const ReferenceTracer<Real> tracer(scene, bvh, stats.features);
+    if (options.progress) options.progress(0.0);
     const std::uint32_t width = scene.camera.width, height = scene.camera.height;
     std::atomic<std::uint32_t> nextRow{0};
     std::atomic<std::uint32_t> rowsDone{0};
-    std::mutex statsMutex;
+    std::mutex statsMutex, progressMutex;
     std::vector<std::vector<TracedRay>> threadRays(options.tracedRays ? threadCount : 0);
     std::atomic<unsigned> nextThread{0};
     auto worker = [&]() {
@@ -487,7 +488,10 @@ void renderRows(const Scene& scene, const Bvh& bvh, unsigned threadCount, const 
                 image.at(x, y) = pixel;
             }
             const std::uint32_t done = ++rowsDone;
-            if (options.progress) options.progress(double(done) / double(height));
+            if (options.progress) {
+                std::lock_guard lock(progressMutex);  // the callback draws: one thread at a time
+                options.progress(double(done) / double(height));
+            }
         }
         std::lock_guard lock(statsMutex);
         counters.addTo(stats);

@@ -28,7 +28,7 @@ struct TracedRay {
 struct ReferenceOptions {
     bool doublePrecision = false;
     unsigned threads = 0;  // 0: all hardware threads
-    std::function<void(double)> progress;  // fraction done, called from worker threads
+    std::function<void(double)> progress;  // fraction done: 0 as tracing begins, then by rows, one call at a time
     // When set, every primary, shadow, reflected and refracted ray is appended (touching probes
     // are not rays of the tree and are left out): the pixels in no particular order, each
     // pixel's rays together and in the order they were traced.

@@ -120,6 +120,7 @@ public:
     }
 
     Image render(const ComputePipeline& firstPass, glm::uvec2 tileSize, const std::function<void(double)>& progress) {
+        if (progress) progress(0.0);
         Image image(width_, height_);
         const std::uint32_t tilesX = (width_ + tileSize.x - 1) / tileSize.x;
         const std::uint32_t tilesY = (height_ + tileSize.y - 1) / tileSize.y;

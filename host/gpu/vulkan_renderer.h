@@ -46,7 +46,7 @@ struct VulkanRenderOptions {
     // Kernels kept from earlier renders on this device (gpu/trace_kernel_cache.h): each is created
     // and compiled once. Null: this render creates its own and drops them at the end.
     TraceKernelCache* kernels = nullptr;
-    std::function<void(double)> progress;  // fraction done
+    std::function<void(double)> progress;  // fraction done: 0 as tracing begins, then by tiles
 };
 
 Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, const VulkanRenderOptions& options,

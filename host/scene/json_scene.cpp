@@ -41,8 +41,8 @@ std::string jsonReason(std::string what) {
 
 class JsonSceneReader {
 public:
-    JsonSceneReader(fs::path file, std::string text, TexelLimit texelLimit)
-        : file_(std::move(file)), text_(std::move(text)), texelLimit_(std::move(texelLimit)) {}
+    JsonSceneReader(fs::path file, std::string text, SceneLoadOptions options)
+        : file_(std::move(file)), text_(std::move(text)), options_(std::move(options)) {}
 
     Scene read() {
         // Far beyond any scene's (objects, an entry, its transform, a vector: 4).
@@ -78,7 +78,7 @@ public:
         if (!objectList) fail("", "a scene needs \"objects\": a non-empty list of OBJ files");
         std::vector<ObjectSpec> specs = objects(*objectList, "/objects");
 
-        ObjLoader loader(scene, texelLimit_);
+        ObjLoader loader(scene, options_);
         for (const ObjectSpec& spec : specs) loader.load(spec.obj, spec.options);
         if (const auto problem = lightProblem(scene))
             fail("/lights/" + std::to_string(problem->light) + "/position", problem->message);
@@ -216,15 +216,15 @@ private:
         };
         try {
             if (const json* x = member(v, "spherical")) {
-                loadSphericalBackground(scene, imagePath(*x, path + "/spherical"), texelLimit_);
+                loadSphericalBackground(scene, imagePath(*x, path + "/spherical"), options_.texelLimit);
             } else if (const json* x = member(v, "cube_cross")) {
-                loadCubeCrossBackground(scene, imagePath(*x, path + "/cube_cross"), texelLimit_);
+                loadCubeCrossBackground(scene, imagePath(*x, path + "/cube_cross"), options_.texelLimit);
             } else if (const json* x = member(v, "cube")) {
                 if (!x->is_array() || x->size() != 6)
                     expected(*x, path + "/cube", "six image file names (+x, -x, +y, -y, +z, -z)");
                 std::array<fs::path, 6> faces;
                 for (std::size_t i = 0; i < 6; ++i) faces[i] = imagePath((*x)[i], path + "/cube/" + std::to_string(i));
-                loadCubeBackground(scene, faces, texelLimit_);
+                loadCubeBackground(scene, faces, options_.texelLimit);
             }
         } catch (const InputError& e) {
             fail(path, e.what());
@@ -327,14 +327,14 @@ private:
 
     fs::path file_;
     std::string text_;
-    TexelLimit texelLimit_;
+    SceneLoadOptions options_;
     std::unordered_map<std::string, int> lines_;
 };
 
 }  // namespace
 
-Scene readJsonScene(const fs::path& file, const TexelLimit& texelLimit) {
-    return JsonSceneReader(file, readInputText(file, "the scene file", kMaxSceneFileBytes), texelLimit).read();
+Scene readJsonScene(const fs::path& file, const SceneLoadOptions& options) {
+    return JsonSceneReader(file, readInputText(file, "the scene file", kMaxSceneFileBytes), options).read();
 }
 
 }  // namespace vitrum

@@ -5,13 +5,13 @@
 #include <filesystem>
 
 #include "scene/scene.h"
-#include "scene/texel_limit.h"
+#include "scene/load_options.h"
 
 namespace vitrum {
 
 // Throws InputError for a missing or malformed file, a value of the wrong type or out of range,
-// and for errors in the OBJ/MTL files it names, the images beyond `texelLimit` included. Unknown
-// keys only warn.
-Scene readJsonScene(const std::filesystem::path& file, const TexelLimit& texelLimit = {});
+// and for errors in the OBJ/MTL files it names, the images beyond the options' texel limit
+// included. Unknown keys only warn.
+Scene readJsonScene(const std::filesystem::path& file, const SceneLoadOptions& options = {});
 
 }  // namespace vitrum

@@ -8,7 +8,9 @@
 #include <functional>
 #include <limits>
 #include <set>
+#include <istream>
 #include <sstream>
+#include <streambuf>
 #include <tuple>
 #include <string_view>
 #include <utility>
@@ -28,6 +30,32 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string readText(const fs::path& file) { return readInputLines(file, "the OBJ file", kMaxObjFileBytes); }
+
+// The OBJ's text as tinyobjloader reads it, a chunk at a time, telling how far it has read (an
+// istringstream copied the text first: one more copy of a 100 MB file).
+class TextStream : public std::streambuf {
+public:
+    TextStream(std::string& text, std::function<void(double)> progress)
+        : text_(text), progress_(std::move(progress)) {}
+
+protected:
+    int_type underflow() override {
+        if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+        if (next_ >= text_.size()) return traits_type::eof();
+        if (progress_) progress_(double(next_) / double(text_.size()));
+        const std::size_t count = std::min(kChunk, text_.size() - next_);
+        char* begin = text_.data() + next_;
+        setg(begin, begin, begin + count);
+        next_ += count;
+        return traits_type::to_int_type(*gptr());
+    }
+
+private:
+    static constexpr std::size_t kChunk = std::size_t(1) << 20;
+    std::string& text_;
+    std::function<void(double)> progress_;
+    std::size_t next_ = 0;
+};
 
 std::string_view firstWord(std::string_view line, std::size_t* end = nullptr) {
     std::size_t begin = line.find_first_not_of(" \t");
@@ -228,7 +256,7 @@ int ObjLoader::texture(const fs::path& imageFile, const fs::path& mtlFile, int l
     if (auto found = textures_.find(key); found != textures_.end()) return found->second;
     int index = -1;
     try {
-        Image image = readImage(imageFile, texelLimit_.leftAfter(scene_));
+        Image image = readImage(imageFile, options_.texelLimit.leftAfter(scene_));
         index = int(scene_.textures.size());
         scene_.textures.push_back(Texture{imageFile, int(image.width), int(image.height), std::move(image.pixels)});
     } catch (const ImageTooLarge& e) {
@@ -284,7 +312,13 @@ void ObjLoader::load(const fs::path& objFile, const ObjOptions& options) {
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> tinyMaterials;
     std::string warnings, errors;
-    std::istringstream stream(text);
+    const std::string fileName = objFile.filename().string();
+    auto report = [&](const std::string& phase) -> std::function<void(double)> {
+        if (!options_.progress) return {};
+        return [this, phase](double fraction) { options_.progress(phase, fraction); };
+    };
+    TextStream textStream(text, report("parsing " + fileName));
+    std::istream stream(&textStream);
     // No triangulation by tinyobj: it reads vertices of quads and polygons before any index check.
     bool ok = tinyobj::LoadObj(&attrib, &shapes, &tinyMaterials, &warnings, &errors, &stream, &reader, false);
     auto oneLine = [](std::string s) {
@@ -328,6 +362,12 @@ void ObjLoader::load(const fs::path& objFile, const ObjOptions& options) {
                                              " statements for them: some line is not what it seems");
     const std::size_t firstTriangle = scene_.triangles.size();
 
+    const std::function<void(double)> triangleProgress = report("triangles of " + fileName);
+    // Room for the file's triangles (a fan has corners - 2) at once: growing by push_back copied a
+    // 3M-triangle model's triangles several times. Doubling still, so that many files stay linear.
+    const std::size_t needed = scene_.triangles.size() + (cornerCount - 2 * faceCount);
+    if (needed > scene_.triangles.capacity()) scene_.triangles.reserve(std::max(needed, 2 * scene_.triangles.capacity()));
+    std::size_t facesDone = 0;
     for (std::size_t s = 0; s < shapes.size(); ++s) {
         const tinyobj::mesh_t& mesh = shapes[s].mesh;
         std::string shapeName = shapes[s].name;
@@ -336,7 +376,8 @@ void ObjLoader::load(const fs::path& objFile, const ObjOptions& options) {
         const auto objectIndex = std::uint32_t(scene_.objectNames.size());
         bool anyTriangle = false;
         std::size_t offset = 0;
-        for (std::size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
+        for (std::size_t f = 0; f < mesh.num_face_vertices.size(); ++f, ++facesDone) {
+            if (triangleProgress && facesDone % 65536 == 0) triangleProgress(double(facesDone) / double(faceCount));
             const std::size_t corners = mesh.num_face_vertices[f];
             for (std::size_t k = 0; k < corners; ++k) {
                 const tinyobj::index_t& idx = mesh.indices[offset + k];

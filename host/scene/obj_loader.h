@@ -11,7 +11,7 @@
 #include <string>
 
 #include "scene/scene.h"
-#include "scene/texel_limit.h"
+#include "scene/load_options.h"
 
 namespace vitrum {
 
@@ -22,11 +22,11 @@ struct ObjOptions {
 
 class ObjLoader {
 public:
-    explicit ObjLoader(Scene& scene, TexelLimit texelLimit = {}) : scene_(scene), texelLimit_(std::move(texelLimit)) {}
+    explicit ObjLoader(Scene& scene, SceneLoadOptions options = {}) : scene_(scene), options_(std::move(options)) {}
 
     // Throws InputError naming the file: missing, unparsable, non-finite coordinates, face indices
     // out of range, no triangles. Missing MTL files and textures only warn; a texture beyond the
-    // texel limit throws ImageTooLarge.
+    // texel limit throws ImageTooLarge. Reports the parsing and the triangles as two phases.
     void load(const std::filesystem::path& objFile, const ObjOptions& options = {});
 
 private:
@@ -36,7 +36,7 @@ private:
     std::uint32_t defaultMaterialIndex();
 
     Scene& scene_;
-    TexelLimit texelLimit_;
+    SceneLoadOptions options_;
     std::map<std::filesystem::path, Library> libraries_;
     std::map<std::filesystem::path, int> textures_;  // -1: could not be read (warned once)
     std::optional<std::uint32_t> defaultMaterial_;

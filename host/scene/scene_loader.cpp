@@ -40,18 +40,18 @@ namespace {
 
 }  // namespace
 
-Scene loadScene(const std::filesystem::path& path, const TexelLimit& texelLimit) {
+Scene loadScene(const std::filesystem::path& path, const SceneLoadOptions& options) {
     std::error_code error;
     if (std::filesystem::is_directory(path, error)) refuseFolder(path);
     std::string extension = lowerCaseExtension(path);
     // Running out of memory is the input's size, not a bug: say which scene (it was "internal
     // error: std::bad_alloc", naming nothing).
     try {
-        if (extension == ".json") return readJsonScene(path, texelLimit);
+        if (extension == ".json") return readJsonScene(path, options);
         if (extension == ".obj") {
             Scene scene;
             scene.source = path;
-            ObjLoader(scene, texelLimit).load(path);
+            ObjLoader(scene, options).load(path);
             frameAutomatically(scene);
             return scene;
         }

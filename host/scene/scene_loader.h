@@ -5,13 +5,13 @@
 #include <filesystem>
 
 #include "scene/scene.h"
-#include "scene/texel_limit.h"
+#include "scene/load_options.h"
 
 namespace vitrum {
 
 // A render passes its device's limit on textures, so that an image too large for it is refused
-// before it is decoded.
-Scene loadScene(const std::filesystem::path& path, const TexelLimit& texelLimit = {});
+// before it is decoded, and a callback for the progress of long loads.
+Scene loadScene(const std::filesystem::path& path, const SceneLoadOptions& options = {});
 
 // The camera and light a bare OBJ gets: frames the bounding box of `scene.triangles`.
 void frameAutomatically(Scene& scene);

@@ -2,6 +2,7 @@
 // spheres, the course meshes and degenerate inputs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <fstream>
@@ -9,6 +10,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "bvh/bvh.h"
 #include "bvh/bvh_traversal.h"
@@ -235,6 +237,22 @@ void checkMesh(const std::vector<Triangle>& triangles, int rayCount) {
 
 std::string coursePath(const std::string& name) {
     return std::string(VITRUM_SHARED_DIR) + "/scenes/course/" + name + "/" + name + ".obj";
+}
+
+// The share of triangles in the leaves made so far, now and then (every 1/256 of them and at the
+// end), never backwards; the tree is the one built without listening.
+TEST(Bvh, BuildReportsItsProgress) {
+    const std::vector<Triangle> triangles = randomSoup(20000, 7);
+    std::vector<double> fractions;
+    const Bvh bvh = buildBvh(triangles, [&](double f) { fractions.push_back(f); });
+    EXPECT_GE(fractions.size(), 128u);
+    EXPECT_LE(fractions.size(), 20000u / 8u);
+    EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+    EXPECT_GT(fractions.front(), 0.0);
+    EXPECT_EQ(fractions.back(), 1.0);
+    const Bvh quiet = buildBvh(triangles);
+    EXPECT_EQ(bvh.triangleOrder, quiet.triangleOrder);
+    EXPECT_EQ(bvh.stats.sahCost, quiet.stats.sahCost);
 }
 
 TEST(Bvh, RandomSoup) { checkMesh(randomSoup(5000, 42), 4000); }

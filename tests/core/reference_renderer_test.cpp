@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <vector>
 
 #include "bvh/bvh.h"
 #include "cpu/optics.h"
@@ -595,23 +596,20 @@ TEST(ReferenceRenderer, MinWeightCutsWeakBranches) {
     EXPECT_LT(sum / a.pixels.size(), 0.02);  // only weak branches were dropped
 }
 
+// 0 as tracing begins, then a call a row, one at a time though two threads render: in order.
 TEST(ReferenceRenderer, ProgressReachesOne) {
     const Scene scene = mixedScene();
     const Bvh bvh = buildBvh(scene.triangles);
-    std::atomic<int> calls{0};
-    std::atomic<double> last{0.0};
+    std::vector<double> fractions;
     ReferenceOptions options;
     options.threads = 2;
-    options.progress = [&](double f) {
-        calls++;
-        double seen = last.load();
-        while (f > seen && !last.compare_exchange_weak(seen, f)) {
-        }
-    };
+    options.progress = [&](double f) { fractions.push_back(f); };
     RenderStats stats;
     renderReference(scene, bvh, options, stats);
-    EXPECT_EQ(calls.load(), int(scene.camera.height));
-    EXPECT_EQ(last.load(), 1.0);
+    ASSERT_EQ(fractions.size(), std::size_t(scene.camera.height) + 1);
+    EXPECT_EQ(fractions.front(), 0.0);
+    EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+    EXPECT_EQ(fractions.back(), 1.0);
 }
 
 }  // namespace

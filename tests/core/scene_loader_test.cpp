@@ -3,14 +3,18 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <functional>
 #include <glm/glm.hpp>
 #include <initializer_list>
+#include <map>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "common/error.h"
 #include "image/srgb.h"
@@ -178,6 +182,42 @@ TEST(SceneObj, TextTheObjReaderReadDifferentlyIsReadAsWrittenOrRefused) {
     // What OBJ allows stays read: vt with one to three numbers, a comment after them, + signs.
     obj = write(dir / "fine.obj", quad + "vt 0.5\nvt 0.5 0.5 0 # w\nvn +0 0 1\nf 1/1/1 2/2/1 +3/+1/+1\n");
     EXPECT_EQ(loadScene(obj).triangles.size(), 1u);
+}
+
+// A big model reports its parsing (a call a megabyte of text) and its triangles (a call every
+// 65,536 faces) as two phases, each from 0 and never backwards.
+TEST(SceneObj, ParsingAndTrianglesReportTheirProgressInPhases) {
+    fs::path dir = tempDir();
+    std::string obj;
+    constexpr int kSide = 300;  // 90,000 vertices, 178,802 triangles, about 3.4 MB
+    for (int y = 0; y < kSide; ++y)
+        for (int x = 0; x < kSide; ++x) obj += "v " + std::to_string(x) + " " + std::to_string(y) + " 0\n";
+    for (int y = 0; y + 1 < kSide; ++y)
+        for (int x = 0; x + 1 < kSide; ++x) {
+            const int a = y * kSide + x + 1, b = a + 1, c = a + kSide, d = c + 1;
+            obj += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(d) + "\nf " +
+                   std::to_string(a) + " " + std::to_string(d) + " " + std::to_string(c) + "\n";
+        }
+    write(dir / "grid.obj", obj);
+    std::vector<std::pair<std::string, double>> calls;
+    SceneLoadOptions options;
+    options.progress = [&](const std::string& phase, double fraction) { calls.emplace_back(phase, fraction); };
+    const Scene scene = loadScene(dir / "grid.obj", options);
+    ASSERT_EQ(scene.triangles.size(), 2u * (kSide - 1) * (kSide - 1));
+    std::map<std::string, std::vector<double>> byPhase;
+    std::vector<std::string> order;
+    for (const auto& [phase, fraction] : calls) {
+        if (order.empty() || order.back() != phase) order.push_back(phase);
+        byPhase[phase].push_back(fraction);
+    }
+    EXPECT_EQ(order, (std::vector<std::string>{"parsing grid.obj", "triangles of grid.obj"}));
+    EXPECT_EQ(byPhase["parsing grid.obj"].size(), (obj.size() + (1u << 20) - 1) >> 20);  // a call a chunk
+    EXPECT_EQ(byPhase["triangles of grid.obj"].size(), 3u);  // faces 0, 65,536 and 131,072
+    for (const auto& [phase, fractions] : byPhase) {
+        EXPECT_EQ(fractions.front(), 0.0) << phase;
+        EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end())) << phase;
+        EXPECT_LT(fractions.back(), 1.0) << phase;
+    }
 }
 
 TEST(SceneObj, ZeroAreaTriangleIsKeptWithAUnitNormal) {
@@ -470,8 +510,8 @@ TEST(SceneMtl, TexturesBeyondTheTexelLimitAreRefusedByTheirHeaders) {
     write(dir / "t.obj",
           "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl a\nf 1/1 2/1 3/1\nusemtl b\nf 1/1 3/1 2/1\n");
     const TexelLimit limit{959, "the test's device allows 959 bytes"};
-    EXPECT_EQ(loadScene(dir / "t.obj", TexelLimit{960, "960"}).textures.size(), 2u);  // 192 + 768 fit 960
-    expectInputError([&] { loadScene(dir / "t.obj", limit); },
+    EXPECT_EQ(loadScene(dir / "t.obj", {TexelLimit{960, "960"}}).textures.size(), 2u);  // 192 + 768 fit 960
+    expectInputError([&] { loadScene(dir / "t.obj", {limit}); },
                      {"t.mtl:4: map_Kd", "large.pfm: image of 8x8 pixels does not fit the device",
                       "it needs 768 bytes as linear RGB float, but the test's device allows 959 bytes",
                       "the scene's images before this one take 192 bytes"});
@@ -483,7 +523,7 @@ TEST(SceneMtl, TexturesBeyondTheTexelLimitAreRefusedByTheirHeaders) {
     const int before = warningCount();
     EXPECT_EQ(loadScene(dir / "f.obj").textures.size(), 0u);  // decoding it fails: a warning
     EXPECT_EQ(warningCount(), before + 1);
-    expectInputError([&] { loadScene(dir / "f.obj", TexelLimit{1 << 20, "1 MiB"}); },
+    expectInputError([&] { loadScene(dir / "f.obj", {TexelLimit{1 << 20, "1 MiB"}}); },
                      {"f.mtl:3: map_Kd", "forged.png: image of 4000x4000 pixels does not fit the device",
                       "184 MiB"});  // 4000 * 4000 * 12 bytes, rounded up
 
@@ -491,12 +531,12 @@ TEST(SceneMtl, TexturesBeyondTheTexelLimitAreRefusedByTheirHeaders) {
     write(dir / "s.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     write(dir / "cube.json", R"({"objects": [{"obj": "s.obj"}], "background": {"cube": )"
                              R"(["small.pfm", "small.pfm", "small.pfm", "small.pfm", "small.pfm", "small.pfm"]}})");
-    EXPECT_EQ(loadScene(dir / "cube.json", TexelLimit{1152, "1152"}).textures.size(), 6u);
-    expectInputError([&] { loadScene(dir / "cube.json", TexelLimit{1151, "1151 bytes"}); },
+    EXPECT_EQ(loadScene(dir / "cube.json", {TexelLimit{1152, "1152"}}).textures.size(), 6u);
+    expectInputError([&] { loadScene(dir / "cube.json", {TexelLimit{1151, "1151 bytes"}}); },
                      {"cube.json", "small.pfm: image of 4x4 pixels does not fit the device",
                       "images before this one take 960 bytes"});
     write(dir / "sphere.json", R"({"objects": [{"obj": "s.obj"}], "background": {"spherical": "forged.png"}})");
-    expectInputError([&] { loadScene(dir / "sphere.json", TexelLimit{1 << 20, "1 MiB"}); },
+    expectInputError([&] { loadScene(dir / "sphere.json", {TexelLimit{1 << 20, "1 MiB"}}); },
                      {"sphere.json", "forged.png: image of 4000x4000 pixels does not fit the device"});
 }
 
