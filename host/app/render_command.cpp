@@ -139,12 +139,13 @@ int renderCommand(int argc, char** argv, int first) {
     Bvh bvh;
     try {
         bvh = buildBvh(scene.triangles, [&](double fraction) { phases.update("building the BVH", fraction); });
+        phases.finish();
         stats.addPhase("bvh", bvh.stats.buildSeconds);
         // The renderers report 0 as they begin to trace, after their analysis and upload.
         auto onProgress = [&](double fraction) { phases.update("rendering", fraction); };
         if (command.backend == Backend::Vulkan) {
             stats.addPhase("device", deviceSeconds);
-            command.gpu.progress = onProgress;
+            command.gpu.progress = phases.callback();
             image = renderVulkan(*device, scene, bvh, command.gpu, stats);
             if (device->validationMessages() > 0)
                 throw std::runtime_error(std::to_string(device->validationMessages()) +

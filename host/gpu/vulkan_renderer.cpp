@@ -56,15 +56,22 @@ struct TraceBuffers {
 // (gpu/tile_buffers.h), the pixels among them copied into the image as each tile is done, so that
 // the image's size is bound by no buffer limit.
 TraceBuffers makeBuffers(VulkanDevice& device, const PackedScene& packed, glm::uvec2 tile,
-                         std::uint32_t pendingRayCapacity) {
+                         std::uint32_t pendingRayCapacity, const PhaseCallback& progress) {
     TraceBuffers b;
     b.owned.reserve(gpu::kTraceBindingCount);  // `bound` points into it
     const gpu::RenderParams noParams{};
     b.add(gpu::kBindingParams, makeTexelBuffer(device, std::span<const gpu::RenderParams>(&noParams, 1),
                                                "render parameters", MemoryUse::HostShared));
+    // The three a triangle (by far the largest), a third each; renderVulkan reported 0 before packing.
+    auto uploaded = [&](double fraction) {
+        if (progress) progress("uploading the scene", fraction);
+    };
     b.add(gpu::kBindingNodes, makeTexelBuffer(device, spanOf(packed.bvh.nodes), "BVH nodes"));
+    uploaded(1.0 / 3.0);
     b.add(gpu::kBindingVertices, makeTexelBuffer(device, spanOf(packed.vertices), "triangle vertices"));
+    uploaded(2.0 / 3.0);
     b.add(gpu::kBindingShading, makeTexelBuffer(device, spanOf(packed.shading), "triangle normals and uvs"));
+    uploaded(1.0);
     b.add(gpu::kBindingMaterials, makeTexelBuffer(device, spanOf(packed.materials), "materials"));
     b.add(gpu::kBindingLights, makeTexelBuffer(device, spanOf(packed.lights), "lights"));
     b.add(gpu::kBindingTextures, makeStorageBuffer(device, spanOf(packed.textures), "texture table"));
@@ -243,18 +250,21 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     stats.backend = "vulkan";
     stats.device = device.name();
     const auto analysisStart = Clock::now();
+    if (options.progress) options.progress("analysing the scene", 0.0);
     stats.features = analyseScene(scene);
+    if (options.progress) options.progress("analysing the scene", 1.0);
     stats.addPhase("analysis", secondsSince(analysisStart));
     const TraceSpecialization kernel =
         options.specialize ? TraceSpecialization::forScene(scene, stats.features) : TraceSpecialization::general();
     stats.kernel = kernel;
 
     auto start = Clock::now();
+    if (options.progress) options.progress("uploading the scene", 0.0);
     const PackedScene packed = packScene(scene, bvh);
     const std::uint32_t tileSize = tileSizeFor(device.description(), options.tileSize);
     stats.tileSize = tileSize;
     const glm::uvec2 tile(std::min(tileSize, scene.camera.width), std::min(tileSize, scene.camera.height));
-    const TraceBuffers buffers = makeBuffers(device, packed, tile, kernel.pendingRayCapacity);
+    const TraceBuffers buffers = makeBuffers(device, packed, tile, kernel.pendingRayCapacity, options.progress);
     stats.stateBytesPerPixel = stateBytesPerPixel(kernel.pendingRayCapacity);
     stats.addPhase("upload", secondsSince(start));
 
@@ -275,7 +285,9 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     TileLoop loop(device, buffers, makeRenderParams(scene, stats.features, packed.bvh.rootEntry, options.iterationBudget),
                   kernel, sums, persistent, kernels, stats);
     stats.addPhase("compile", loop.compile(firstPass));
-    return loop.render(firstPass.pipeline, tile, options.progress);
+    return loop.render(firstPass.pipeline, tile, [&](double fraction) {
+        if (options.progress) options.progress("rendering", fraction);
+    });
 }
 
 }  // namespace vitrum

@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "bvh/bvh.h"
+#include "common/progress.h"
 #include "gpu/trace_pipeline.h"
 #include "gpu/vulkan_device.h"
 #include "image/image.h"
@@ -46,7 +47,9 @@ struct VulkanRenderOptions {
     // Kernels kept from earlier renders on this device (gpu/trace_kernel_cache.h): each is created
     // and compiled once. Null: this render creates its own and drops them at the end.
     TraceKernelCache* kernels = nullptr;
-    std::function<void(double)> progress;  // fraction done: 0 as tracing begins, then by tiles
+    // "analysing the scene" (0, then 1), "uploading the scene" by its buffers, then "rendering"
+    // from 0 as tracing begins, by tiles.
+    PhaseCallback progress;
 };
 
 Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, const VulkanRenderOptions& options,

@@ -5,6 +5,9 @@
 #include "gpu/tile_size.h"
 
 #include <cmath>
+#include <vector>
+#include <utility>
+#include <string>
 
 #include "gpu_test_support.h"
 
@@ -102,6 +105,26 @@ TEST(TileSize, ARenderReportsItsTile) {
     EXPECT_EQ(toJson(stats)["kernel"]["tile_size"], expected);
     renderVulkan(testDevice(), scene, buildBvh(scene.triangles), VulkanRenderOptions{.tileSize = 16}, stats);
     EXPECT_EQ(stats.tileSize, 16u);
+}
+
+// Progress in phases: the scene's analysis, its upload by its three per-triangle buffers, then
+// the render from 0 by tiles (six tiles of 8 x 8 here), each phase in order.
+TEST(TileSize, ARenderReportsItsUploadThenItsTiles) {
+    Scene scene = loadScene(sourcePath("scenes/prism.json"));
+    scene.camera.width = 24;
+    scene.camera.height = 16;
+    std::vector<std::pair<std::string, double>> calls;
+    VulkanRenderOptions options{.tileSize = 8};
+    options.progress = [&](const std::string& phase, double fraction) { calls.emplace_back(phase, fraction); };
+    RenderStats stats;
+    renderVulkan(testDevice(), scene, buildBvh(scene.triangles), options, stats);
+    const std::vector<std::pair<std::string, double>> expected = {
+        {"analysing the scene", 0.0},       {"analysing the scene", 1.0},
+        {"uploading the scene", 0.0},       {"uploading the scene", 1.0 / 3.0}, {"uploading the scene", 2.0 / 3.0},
+        {"uploading the scene", 1.0},       {"rendering", 0.0},                 {"rendering", 1.0 / 6.0},
+        {"rendering", 2.0 / 6.0},           {"rendering", 3.0 / 6.0},           {"rendering", 4.0 / 6.0},
+        {"rendering", 5.0 / 6.0},           {"rendering", 1.0}};
+    EXPECT_EQ(calls, expected);
 }
 
 }  // namespace
