@@ -33,7 +33,7 @@ std::span<const T> spanOf(const std::vector<T>& v) {
 
 // One texel an object: its medium's material's `attenuation` (Tf, Ni), which bindings.glsl's
 // objectMedium() reads.
-std::vector<glm::vec4> objectMediumTexels(const PackedScene& packed) {
+std::vector<glm::vec4> objectMediumTexels(const PackedTables& packed) {
     std::vector<glm::vec4> texels;
     for (std::uint32_t material : packed.objectMaterials) texels.push_back(packed.materials[material].attenuation);
     return texels;
@@ -55,8 +55,10 @@ struct TraceBuffers {
 // statistics and work cursor, zeroed before and read after it; and the tile's buffers
 // (gpu/tile_buffers.h), the pixels among them copied into the image as each tile is done, so that
 // the image's size is bound by no buffer limit.
-TraceBuffers makeBuffers(VulkanDevice& device, const PackedScene& packed, glm::uvec2 tile,
-                         std::uint32_t pendingRayCapacity, const PhaseCallback& progress) {
+// The arrays a triangle are packed one at a time, each dropped once uploaded (packed_scene.h);
+// `rootEntry` is where the traversal begins.
+TraceBuffers makeBuffers(VulkanDevice& device, const Scene& scene, const Bvh& bvh, glm::uvec2 tile,
+                         std::uint32_t pendingRayCapacity, const PhaseCallback& progress, std::uint32_t& rootEntry) {
     TraceBuffers b;
     b.owned.reserve(gpu::kTraceBindingCount);  // `bound` points into it
     const gpu::RenderParams noParams{};
@@ -66,12 +68,18 @@ TraceBuffers makeBuffers(VulkanDevice& device, const PackedScene& packed, glm::u
     auto uploaded = [&](double fraction) {
         if (progress) progress("uploading the scene", fraction);
     };
-    b.add(gpu::kBindingNodes, makeTexelBuffer(device, spanOf(packed.bvh.nodes), "BVH nodes"));
+    {
+        const TraversalNodes nodes = makeTraversalNodes(bvh.nodes);
+        rootEntry = nodes.rootEntry;
+        b.add(gpu::kBindingNodes, makeTexelBuffer(device, spanOf(nodes.nodes), "BVH nodes"));
+    }
     uploaded(1.0 / 3.0);
-    b.add(gpu::kBindingVertices, makeTexelBuffer(device, spanOf(packed.vertices), "triangle vertices"));
+    // Each packed array is a temporary, gone at the end of its statement.
+    b.add(gpu::kBindingVertices, makeTexelBuffer(device, spanOf(packVertices(scene, bvh)), "triangle vertices"));
     uploaded(2.0 / 3.0);
-    b.add(gpu::kBindingShading, makeTexelBuffer(device, spanOf(packed.shading), "triangle normals and uvs"));
+    b.add(gpu::kBindingShading, makeTexelBuffer(device, spanOf(packShading(scene, bvh)), "triangle normals and uvs"));
     uploaded(1.0);
+    const PackedTables packed = packTables(scene);
     b.add(gpu::kBindingMaterials, makeTexelBuffer(device, spanOf(packed.materials), "materials"));
     b.add(gpu::kBindingLights, makeTexelBuffer(device, spanOf(packed.lights), "lights"));
     b.add(gpu::kBindingTextures, makeStorageBuffer(device, spanOf(packed.textures), "texture table"));
@@ -260,11 +268,12 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
 
     auto start = Clock::now();
     if (options.progress) options.progress("uploading the scene", 0.0);
-    const PackedScene packed = packScene(scene, bvh);
     const std::uint32_t tileSize = tileSizeFor(device.description(), options.tileSize);
     stats.tileSize = tileSize;
     const glm::uvec2 tile(std::min(tileSize, scene.camera.width), std::min(tileSize, scene.camera.height));
-    const TraceBuffers buffers = makeBuffers(device, packed, tile, kernel.pendingRayCapacity, options.progress);
+    std::uint32_t rootEntry = gpu::kLeafEntryFlag;
+    const TraceBuffers buffers =
+        makeBuffers(device, scene, bvh, tile, kernel.pendingRayCapacity, options.progress, rootEntry);
     stats.stateBytesPerPixel = stateBytesPerPixel(kernel.pendingRayCapacity);
     stats.addPhase("upload", secondsSince(start));
 
@@ -282,7 +291,7 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     firstPass.pipeline.bind(buffers.bound);
     stats.addPhase("pipeline", secondsSince(start));
 
-    TileLoop loop(device, buffers, makeRenderParams(scene, stats.features, packed.bvh.rootEntry, options.iterationBudget),
+    TileLoop loop(device, buffers, makeRenderParams(scene, stats.features, rootEntry, options.iterationBudget),
                   kernel, sums, persistent, kernels, stats);
     stats.addPhase("compile", loop.compile(firstPass));
     return loop.render(firstPass.pipeline, tile, [&](double fraction) {

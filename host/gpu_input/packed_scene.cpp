@@ -17,18 +17,21 @@ namespace {
 float bits(std::uint32_t value) { return std::bit_cast<float>(value); }
 }  // namespace
 
-PackedScene packScene(const Scene& scene, const Bvh& bvh) {
-    PackedScene packed;
-    packed.bvh = makeTraversalNodes(bvh.nodes);
-    packed.vertices = packTriangleVertices(bvh, scene.triangles);
-    for (std::size_t i = 0; i < packed.vertices.size(); ++i) {
+std::vector<gpu::TriangleVertices> packVertices(const Scene& scene, const Bvh& bvh) {
+    std::vector<gpu::TriangleVertices> vertices = packTriangleVertices(bvh, scene.triangles);
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
         const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
-        if (scene.materials[t.material].model == MaterialModel::Glass) packed.vertices[i].v2.w = bits(gpu::kTriangleGlass);
+        if (scene.materials[t.material].model == MaterialModel::Glass) vertices[i].v2.w = bits(gpu::kTriangleGlass);
     }
-    packed.shading.reserve(bvh.triangleOrder.size());
+    return vertices;
+}
+
+std::vector<gpu::TriangleShading> packShading(const Scene& scene, const Bvh& bvh) {
+    std::vector<gpu::TriangleShading> shading;
+    shading.reserve(bvh.triangleOrder.size());
     for (std::uint32_t index : bvh.triangleOrder) {
         const Triangle& t = scene.triangles[index];
-        packed.shading.push_back({
+        shading.push_back({
             .n0 = glm::vec4(t.normal[0], 0.0f),
             .n1 = glm::vec4(t.normal[1], 0.0f),
             .n2 = glm::vec4(t.normal[2], 0.0f),
@@ -36,6 +39,11 @@ PackedScene packScene(const Scene& scene, const Bvh& bvh) {
             .uv2 = glm::vec4(t.uv[2], 0.0f, 0.0f),
         });
     }
+    return shading;
+}
+
+PackedTables packTables(const Scene& scene) {
+    PackedTables packed;
     for (const Material& m : scene.materials) {
         std::uint32_t texture = m.diffuseTexture >= 0 ? std::uint32_t(m.diffuseTexture) : gpu::kNoTexture;
         packed.materials.push_back({
@@ -56,6 +64,10 @@ PackedScene packScene(const Scene& scene, const Bvh& bvh) {
     }
     packed.objectMaterials = objectMediumMaterials(scene);
     return packed;
+}
+
+PackedScene packScene(const Scene& scene, const Bvh& bvh) {
+    return PackedScene{makeTraversalNodes(bvh.nodes), packVertices(scene, bvh), packShading(scene, bvh), packTables(scene)};
 }
 
 }  // namespace vitrum

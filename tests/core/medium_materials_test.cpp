@@ -62,8 +62,8 @@ TEST(MediumMaterials, ThePackedSceneFollowsTheRule) {
     std::vector<std::uint32_t> sceneOrder(scene.triangles.size());
     for (std::uint32_t i = 0; i < sceneOrder.size(); ++i) sceneOrder[i] = i;
     ASSERT_NE(bvh.triangleOrder, sceneOrder) << "the BVH keeps the scene's order: the test shows nothing";
-    EXPECT_EQ(packScene(scene, bvh).objectMaterials, objectMediumMaterials(scene));
-    EXPECT_EQ(packScene(scene, bvh).objectMaterials, (std::vector<std::uint32_t>{2, 1, 0, 2}));
+    EXPECT_EQ(packScene(scene, bvh).tables.objectMaterials, objectMediumMaterials(scene));
+    EXPECT_EQ(packScene(scene, bvh).tables.objectMaterials, (std::vector<std::uint32_t>{2, 1, 0, 2}));
 }
 
 }  // namespace
