@@ -40,5 +40,7 @@ namespace vitrum {
 // Triangle positions in BVH order, as the GPU and the CPU traversal read them (material index in
 // v0.w, object index in v1.w, both as uint bits).
 std::vector<gpu::TriangleVertices> packTriangleVertices(const Bvh& bvh, std::span<const Triangle> triangles);
+// The same into `into` (bvh.triangleOrder.size() of them).
+void packTriangleVertices(const Bvh& bvh, std::span<const Triangle> triangles, std::span<gpu::TriangleVertices> into);
 
 }  // namespace vitrum

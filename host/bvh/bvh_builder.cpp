@@ -272,14 +272,18 @@ Bvh buildBvh(std::span<const Triangle> triangles, const std::function<void(doubl
     return bvh;
 }
 
+void packTriangleVertices(const Bvh& bvh, std::span<const Triangle> triangles, std::span<gpu::TriangleVertices> into) {
+    for (std::size_t i = 0; i < into.size(); ++i) {
+        const Triangle& tri = triangles[bvh.triangleOrder[i]];
+        into[i].v0 = glm::vec4(tri.position[0], std::bit_cast<float>(tri.material));
+        into[i].v1 = glm::vec4(tri.position[1], std::bit_cast<float>(tri.object));
+        into[i].v2 = glm::vec4(tri.position[2], 0.0f);
+    }
+}
+
 std::vector<gpu::TriangleVertices> packTriangleVertices(const Bvh& bvh, std::span<const Triangle> triangles) {
     std::vector<gpu::TriangleVertices> packed(bvh.triangleOrder.size());
-    for (std::size_t i = 0; i < packed.size(); ++i) {
-        const Triangle& tri = triangles[bvh.triangleOrder[i]];
-        packed[i].v0 = glm::vec4(tri.position[0], std::bit_cast<float>(tri.material));
-        packed[i].v1 = glm::vec4(tri.position[1], std::bit_cast<float>(tri.object));
-        packed[i].v2 = glm::vec4(tri.position[2], 0.0f);
-    }
+    packTriangleVertices(bvh, triangles, packed);
     return packed;
 }
 

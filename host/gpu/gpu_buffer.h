@@ -43,6 +43,8 @@ class GpuBuffer;
 template <class T>
 GpuBuffer makeTexelBuffer(VulkanDevice& device, std::span<const T> data, const std::string& what,
                           MemoryUse use = MemoryUse::Upload);
+template <class T, class Write>
+GpuBuffer makeTexelBufferWritten(VulkanDevice& device, std::size_t count, const std::string& what, Write write);
 
 class GpuBuffer {
 public:
@@ -72,6 +74,8 @@ public:
 private:
     template <class T>
     friend GpuBuffer makeTexelBuffer(VulkanDevice&, std::span<const T>, const std::string&, MemoryUse);
+    template <class T, class Write>
+    friend GpuBuffer makeTexelBufferWritten(VulkanDevice&, std::size_t, const std::string&, Write);
     void makeTexelView();
 
     UniqueBuffer buffer_;
@@ -126,6 +130,26 @@ GpuBuffer makeTexelBuffer(VulkanDevice& device, std::span<const T> data, const s
     GpuBuffer buffer(device, size, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT,
                      what, use);
     buffer.fill(device, std::as_bytes(data));
+    buffer.makeTexelView();
+    return buffer;
+}
+
+// A texel buffer of `count` elements that `write(std::span<T>)` writes where they are to live:
+// straight into the buffer where the host can map it (no second copy of a big model's array),
+// else into a vector uploaded through a staging buffer. MemoryUse::Upload.
+template <class T, class Write>
+GpuBuffer makeTexelBufferWritten(VulkanDevice& device, std::size_t count, const std::string& what, Write write) {
+    static_assert(sizeof(T) % 16 == 0, "texel buffers hold whole uvec4 texels");
+    const VkDeviceSize size = std::max<VkDeviceSize>(count * sizeof(T), 16);
+    GpuBuffer buffer(device, size, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT,
+                     what, MemoryUse::Upload);
+    if (buffer.mapped()) {
+        write(std::span<T>(buffer.as<T>(), count));
+    } else {
+        std::vector<T> data(count);
+        write(std::span<T>(data));
+        buffer.fill(device, std::as_bytes(std::span<const T>(data)));
+    }
     buffer.makeTexelView();
     return buffer;
 }

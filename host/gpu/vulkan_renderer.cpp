@@ -55,8 +55,8 @@ struct TraceBuffers {
 // statistics and work cursor, zeroed before and read after it; and the tile's buffers
 // (gpu/tile_buffers.h), the pixels among them copied into the image as each tile is done, so that
 // the image's size is bound by no buffer limit.
-// The arrays a triangle are packed one at a time, each dropped once uploaded (packed_scene.h);
-// `rootEntry` is where the traversal begins.
+// The arrays a triangle are written into their buffers (packed_scene.h); `rootEntry` is where
+// the traversal begins.
 TraceBuffers makeBuffers(VulkanDevice& device, const Scene& scene, const Bvh& bvh, glm::uvec2 tile,
                          std::uint32_t pendingRayCapacity, const PhaseCallback& progress, std::uint32_t& rootEntry) {
     TraceBuffers b;
@@ -74,10 +74,14 @@ TraceBuffers makeBuffers(VulkanDevice& device, const Scene& scene, const Bvh& bv
         b.add(gpu::kBindingNodes, makeTexelBuffer(device, spanOf(nodes.nodes), "BVH nodes"));
     }
     uploaded(1.0 / 3.0);
-    // Each packed array is a temporary, gone at the end of its statement.
-    b.add(gpu::kBindingVertices, makeTexelBuffer(device, spanOf(packVertices(scene, bvh)), "triangle vertices"));
+    const std::size_t triangles = bvh.triangleOrder.size();
+    b.add(gpu::kBindingVertices, makeTexelBufferWritten<gpu::TriangleVertices>(
+                                     device, triangles, "triangle vertices",
+                                     [&](std::span<gpu::TriangleVertices> into) { packVertices(scene, bvh, into); }));
     uploaded(2.0 / 3.0);
-    b.add(gpu::kBindingShading, makeTexelBuffer(device, spanOf(packShading(scene, bvh)), "triangle normals and uvs"));
+    b.add(gpu::kBindingShading, makeTexelBufferWritten<gpu::TriangleShading>(
+                                    device, triangles, "triangle normals and uvs",
+                                    [&](std::span<gpu::TriangleShading> into) { packShading(scene, bvh, into); }));
     uploaded(1.0);
     const PackedTables packed = packTables(scene);
     b.add(gpu::kBindingMaterials, makeTexelBuffer(device, spanOf(packed.materials), "materials"));

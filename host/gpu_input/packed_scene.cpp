@@ -17,29 +17,25 @@ namespace {
 float bits(std::uint32_t value) { return std::bit_cast<float>(value); }
 }  // namespace
 
-std::vector<gpu::TriangleVertices> packVertices(const Scene& scene, const Bvh& bvh) {
-    std::vector<gpu::TriangleVertices> vertices = packTriangleVertices(bvh, scene.triangles);
-    for (std::size_t i = 0; i < vertices.size(); ++i) {
+void packVertices(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleVertices> into) {
+    packTriangleVertices(bvh, scene.triangles, into);
+    for (std::size_t i = 0; i < into.size(); ++i) {
         const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
-        if (scene.materials[t.material].model == MaterialModel::Glass) vertices[i].v2.w = bits(gpu::kTriangleGlass);
+        if (scene.materials[t.material].model == MaterialModel::Glass) into[i].v2.w = bits(gpu::kTriangleGlass);
     }
-    return vertices;
 }
 
-std::vector<gpu::TriangleShading> packShading(const Scene& scene, const Bvh& bvh) {
-    std::vector<gpu::TriangleShading> shading;
-    shading.reserve(bvh.triangleOrder.size());
-    for (std::uint32_t index : bvh.triangleOrder) {
-        const Triangle& t = scene.triangles[index];
-        shading.push_back({
+void packShading(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleShading> into) {
+    for (std::size_t i = 0; i < into.size(); ++i) {
+        const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
+        into[i] = {
             .n0 = glm::vec4(t.normal[0], 0.0f),
             .n1 = glm::vec4(t.normal[1], 0.0f),
             .n2 = glm::vec4(t.normal[2], 0.0f),
             .uv01 = glm::vec4(t.uv[0], t.uv[1]),
             .uv2 = glm::vec4(t.uv[2], 0.0f, 0.0f),
-        });
+        };
     }
-    return shading;
 }
 
 PackedTables packTables(const Scene& scene) {
@@ -67,7 +63,12 @@ PackedTables packTables(const Scene& scene) {
 }
 
 PackedScene packScene(const Scene& scene, const Bvh& bvh) {
-    return PackedScene{makeTraversalNodes(bvh.nodes), packVertices(scene, bvh), packShading(scene, bvh), packTables(scene)};
+    PackedScene packed{makeTraversalNodes(bvh.nodes), {}, {}, packTables(scene)};
+    packed.vertices.resize(bvh.triangleOrder.size());
+    packVertices(scene, bvh, packed.vertices);
+    packed.shading.resize(bvh.triangleOrder.size());
+    packShading(scene, bvh, packed.shading);
+    return packed;
 }
 
 }  // namespace vitrum

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "bvh/bvh.h"
@@ -24,11 +25,11 @@ struct PackedTables {
 
 PackedTables packTables(const Scene& scene);
 
-// The arrays a triangle, in BVH order, each made on its own: the renderer uploads one and drops it
-// before it makes the next, so that a big model's host memory holds one of them at a time beside
-// the device's copies (together 192 bytes a triangle).
-std::vector<gpu::TriangleVertices> packVertices(const Scene& scene, const Bvh& bvh);  // with the glass flag
-std::vector<gpu::TriangleShading> packShading(const Scene& scene, const Bvh& bvh);
+// The arrays a triangle, in BVH order (bvh.triangleOrder.size() of each), each written on its own
+// where it is to live: the renderer writes them into the device's buffers where the host can map
+// them, so that a big model's host memory holds no second copy (192 bytes a triangle).
+void packVertices(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleVertices> into);  // with the glass flag
+void packShading(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleShading> into);
 
 // All of it at once (tests, benchmarks).
 struct PackedScene {
