@@ -137,15 +137,20 @@ GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsag
 
 void GpuBuffer::fill(VulkanDevice& device, std::span<const std::byte> bytes) {
     if (bytes.empty()) return;  // an empty vector's data() may be null: memcpy must not see it
-    if (bytes.size() > size_) throw std::logic_error("GpuBuffer::fill: more bytes than the buffer holds");
+    write(device, bytes.size(), [&](void* into) { std::memcpy(into, bytes.data(), bytes.size()); });
+}
+
+void GpuBuffer::write(VulkanDevice& device, VkDeviceSize size, const std::function<void(void*)>& writer) {
+    if (size == 0) return;
+    if (size > size_) throw std::logic_error("GpuBuffer::write: more bytes than the buffer holds");
     if (mapped_) {
-        std::memcpy(mapped_, bytes.data(), bytes.size());
+        writer(mapped_);
         return;
     }
-    GpuBuffer staging(device, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "staging buffer", MemoryUse::Staging);
-    std::memcpy(staging.mapped(), bytes.data(), bytes.size());
+    GpuBuffer staging(device, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "staging buffer", MemoryUse::Staging);
+    writer(staging.mapped());
     device.submitAndWait([&](VkCommandBuffer commands) {
-        const VkBufferCopy region{.srcOffset = 0, .dstOffset = 0, .size = bytes.size()};
+        const VkBufferCopy region{.srcOffset = 0, .dstOffset = 0, .size = size};
         vkCmdCopyBuffer(commands, staging.buffer(), buffer(), 1, &region);
         // The copy's writes made visible to the kernels that read the buffer in later submissions.
         const VkMemoryBarrier barrier{

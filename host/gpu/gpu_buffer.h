@@ -66,6 +66,9 @@ public:
     // Writes `bytes` at the buffer's start: directly where it is mapped, else through a staging
     // buffer and a copy on `device`'s queue, after which kernels may read it.
     void fill(VulkanDevice& device, std::span<const std::byte> bytes);
+    // The same for `size` bytes that `writer` writes at the pointer it is given: the buffer's own
+    // memory where it is mapped, else the staging buffer's (no copy of them in between).
+    void write(VulkanDevice& device, VkDeviceSize size, const std::function<void(void*)>& writer);
     template <class T>
     T* as() const {
         return static_cast<T*>(mapped_);
@@ -135,21 +138,15 @@ GpuBuffer makeTexelBuffer(VulkanDevice& device, std::span<const T> data, const s
 }
 
 // A texel buffer of `count` elements that `write(std::span<T>)` writes where they are to live:
-// straight into the buffer where the host can map it (no second copy of a big model's array),
-// else into a vector uploaded through a staging buffer. MemoryUse::Upload.
+// straight into the buffer where the host can map it, else into the staging buffer it is copied
+// from (GpuBuffer::write): no second copy of a big model's array either way. MemoryUse::Upload.
 template <class T, class Write>
 GpuBuffer makeTexelBufferWritten(VulkanDevice& device, std::size_t count, const std::string& what, Write write) {
     static_assert(sizeof(T) % 16 == 0, "texel buffers hold whole uvec4 texels");
     const VkDeviceSize size = std::max<VkDeviceSize>(count * sizeof(T), 16);
     GpuBuffer buffer(device, size, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT,
                      what, MemoryUse::Upload);
-    if (buffer.mapped()) {
-        write(std::span<T>(buffer.as<T>(), count));
-    } else {
-        std::vector<T> data(count);
-        write(std::span<T>(data));
-        buffer.fill(device, std::as_bytes(std::span<const T>(data)));
-    }
+    buffer.write(device, count * sizeof(T), [&](void* into) { write(std::span<T>(static_cast<T*>(into), count)); });
     buffer.makeTexelView();
     return buffer;
 }
