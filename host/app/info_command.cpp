@@ -6,9 +6,9 @@
 
 #include "app/arguments.h"
 #include "app/commands.h"
-#include "common/progress.h"
 #include "bvh/bvh.h"
 #include "common/error.h"
+#include "common/progress.h"
 #include "analysis/scene_features.h"
 #include "gpu_input/trace_specialization.h"
 #include "scene/scene_names.h"

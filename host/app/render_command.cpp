@@ -24,6 +24,7 @@
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
 #include "image/image.h"
+#include "image/pixel_limit.h"
 #include "scene/scene_loader.h"
 #include "shared/gpu_types.h"
 
@@ -80,7 +81,7 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         {"triangle normals and uvs", triangles * sizeof(gpu::TriangleShading), kTexel},
         {"materials", scene.materials.size() * sizeof(gpu::GpuMaterial), kTexel},
         {"lights", scene.lights.size() * sizeof(gpu::GpuLight), kTexel},
-        {"texture texels", texels * 3 * sizeof(float), kStorage},  // within the limit: loadScene refused more
+        {"texture texels", texels * PixelLimit::kBytesPerPixel, kStorage},  // within the limit: loadScene refused more
     };
     // The general kernel's: the scene's analysis, which may need fewer pending rays, comes later.
     for (const TileBuffer& buffer : kTileBuffers)
@@ -141,8 +142,8 @@ int renderCommand(int argc, char** argv, int first) {
         bvh = buildBvh(scene.triangles, [&](double fraction) { phases.update("building the BVH", fraction); });
         phases.finish();
         stats.addPhase("bvh", bvh.stats.buildSeconds);
-        // The renderers report 0 as they begin to trace, after their analysis and upload.
-        auto onProgress = [&](double fraction) { phases.update("rendering", fraction); };
+        // The renderers report "rendering" from 0 as they begin to trace, after their analysis and
+        // upload (the Vulkan one reports those phases too).
         if (command.backend == Backend::Vulkan) {
             stats.addPhase("device", deviceSeconds);
             command.gpu.progress = phases.callback();
@@ -153,7 +154,7 @@ int renderCommand(int argc, char** argv, int first) {
         } else {
             ReferenceOptions options{.doublePrecision = command.doublePrecision,
                                      .threads = command.threads,
-                                     .progress = onProgress};
+                                     .progress = [&](double fraction) { phases.update("rendering", fraction); }};
             image = renderReference(scene, bvh, options, stats);
         }
     } catch (const std::bad_alloc&) {

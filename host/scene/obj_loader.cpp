@@ -168,10 +168,11 @@ ObjScan scanObj(const fs::path& file, std::string_view text) {
                 if (exponentDigits(number) > 9)
                     throw inputError(file, lineNumber, "the exponent of " + quoteInput(number) + " is out of range");
                 float value = 0.0f;
-                if (checked && numbers < 3 && readFloat(number, value) != FloatText::Number)
+                const FloatText read = checked && numbers < 3 ? readFloat(number, value) : FloatText::Number;
+                if (read != FloatText::Number)
                     throw inputError(file, lineNumber,
                                      std::string(word) + " expects numbers, got " + quoteInput(number) +
-                                         (readFloat(number, value) == FloatText::NotFinite ? ", which is not finite" : ""));
+                                         (read == FloatText::NotFinite ? ", which is not finite" : ""));
                 ++numbers;
                 rest = rest.substr(numberEnd);
             }

@@ -25,8 +25,8 @@ public:
     explicit ObjLoader(Scene& scene, SceneLoadOptions options = {}) : scene_(scene), options_(std::move(options)) {}
 
     // Throws InputError naming the file: missing, unparsable, non-finite coordinates, face indices
-    // out of range, no triangles. Missing MTL files and textures only warn; a texture beyond the
-    // texel limit throws ImageTooLarge. Reports the parsing and the triangles as two phases.
+    // out of range, no triangles, a texture beyond the texel limit (with its MTL line). Missing MTL
+    // files and unreadable textures only warn. Reports the parsing and the triangles as two phases.
     void load(const std::filesystem::path& objFile, const ObjOptions& options = {});
 
 private:
