@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <optional>
 
 #include "gpu/gpu_buffer.h"
 #include "gpu/gpu_layout.h"
@@ -138,35 +139,29 @@ public:
         return secondsSince(start);
     }
 
-    Image render(const ComputePipeline& firstPass, glm::uvec2 tileSize, const std::function<void(double)>& progress) {
-        if (progress) progress(0.0);
-        Image image(width_, height_);
-        const std::uint32_t tilesX = (width_ + tileSize.x - 1) / tileSize.x;
-        const std::uint32_t tilesY = (height_ + tileSize.y - 1) / tileSize.y;
+    // Renders the tiles `schedule` hands out until it has none left, each into the schedule.
+    void render(const ComputePipeline& firstPass, const TileGrid& grid, TileSchedule& schedule) {
         const auto start = Clock::now();
-        for (std::uint32_t ty = 0; ty < tilesY; ++ty)
-            for (std::uint32_t tx = 0; tx < tilesX; ++tx) {
-                const glm::uvec4 tile(tx * tileSize.x, ty * tileSize.y, tileSize.x, tileSize.y);
+        while (const std::optional<std::uint32_t> index = schedule.next()) {
+            const glm::uvec4 tile = grid.rect(*index);
+            gpu::setTile(params_, tile);
+            const std::uint32_t givenUp = persistent_ ? dispatchPersistent(firstPass) : dispatch(firstPass);
+            stats_.restartedPixels += givenUp;
+            if (givenUp > 0 && !resumable_) {
+                const auto buildStart = Clock::now();
+                const TraceKernelCache::Kernel k = kernels_.get(device_, kernel_, true, sums_);
+                k.pipeline.bind(buffers_.bound);
+                compile(k);
+                resumable_ = &k.pipeline;
+                resumableSeconds_ = secondsSince(buildStart);
                 gpu::setTile(params_, tile);
-                const std::uint32_t givenUp = persistent_ ? dispatchPersistent(firstPass) : dispatch(firstPass);
-                stats_.restartedPixels += givenUp;
-                if (givenUp > 0 && !resumable_) {
-                    const auto buildStart = Clock::now();
-                    const TraceKernelCache::Kernel k = kernels_.get(device_, kernel_, true, sums_);
-                    k.pipeline.bind(buffers_.bound);
-                    compile(k);
-                    resumable_ = &k.pipeline;
-                    resumableSeconds_ = secondsSince(buildStart);
-                    gpu::setTile(params_, tile);
-                }
-                for (std::uint32_t unfinished = givenUp; unfinished > 0;) unfinished = dispatch(*resumable_);
-                readTile(tile, image);
-                if (progress) progress(double(ty * tilesX + tx + 1) / double(tilesX * tilesY));
             }
+            for (std::uint32_t unfinished = givenUp; unfinished > 0;) unfinished = dispatch(*resumable_);
+            schedule.finished(*index, readTile(tile, grid.pixelsInside(*index)));
+        }
         stats_.addPhase("render", secondsSince(start) - resumableSeconds_ - readbackSeconds_);
         if (resumable_) stats_.addPhase("resumable kernel", resumableSeconds_);  // its pipeline and compile
         stats_.addPhase("readback", readbackSeconds_);
-        return image;
     }
 
 private:
@@ -220,16 +215,15 @@ private:
         }
     }
 
-    // The tile's pixels inside the image, from their slots (trace.comp's traceUnit) to the image.
-    void readTile(glm::uvec4 tile, Image& image) {
+    // The tile's pixels inside the image, from their slots (trace.comp's traceUnit).
+    Image readTile(glm::uvec4 tile, glm::uvec2 inside) {
         const auto start = Clock::now();
         const auto* values = buffers_.bound[gpu::kBindingPixels]->as<glm::vec4>();
-        const std::uint32_t columns = std::min(tile.z, width_ - tile.x);
-        const std::uint32_t rows = std::min(tile.w, height_ - tile.y);
-        for (std::uint32_t y = 0; y < rows; ++y)
-            for (std::uint32_t x = 0; x < columns; ++x)
-                image.at(tile.x + x, tile.y + y) = glm::vec3(values[y * tile.z + x]);
+        Image pixels(inside.x, inside.y);
+        for (std::uint32_t y = 0; y < inside.y; ++y)
+            for (std::uint32_t x = 0; x < inside.x; ++x) pixels.at(x, y) = glm::vec3(values[y * tile.z + x]);
         readbackSeconds_ += secondsSince(start);
+        return pixels;
     }
 
     VulkanDevice& device_;
@@ -250,8 +244,8 @@ private:
 
 }  // namespace
 
-Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, const VulkanRenderOptions& options,
-                   RenderStats& stats) {
+void renderVulkanTiles(VulkanDevice& device, const Scene& scene, const Bvh& bvh, const VulkanRenderOptions& options,
+                       TileSchedule& schedule, RenderStats& stats) {
     if (scene.triangles.size() > gpu::kMaxTriangles)
         throw InputError("the scene has " + std::to_string(scene.triangles.size()) +
                          " triangles; the Vulkan backend traces at most " + std::to_string(gpu::kMaxTriangles));
@@ -272,12 +266,11 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
 
     auto start = Clock::now();
     if (options.progress) options.progress("uploading the scene", 0.0);
-    const std::uint32_t tileSize = tileSizeFor(device.description(), options.tileSize);
-    stats.tileSize = tileSize;
-    const glm::uvec2 tile(std::min(tileSize, scene.camera.width), std::min(tileSize, scene.camera.height));
+    const TileGrid grid = tileGridFor(device, scene, options);
+    stats.tileSize = tileSizeFor(device.description(), options.tileSize);
     std::uint32_t rootEntry = gpu::kLeafEntryFlag;
     const TraceBuffers buffers =
-        makeBuffers(device, scene, bvh, tile, kernel.pendingRayCapacity, options.progress, rootEntry);
+        makeBuffers(device, scene, bvh, grid.tile, kernel.pendingRayCapacity, options.progress, rootEntry);
     stats.stateBytesPerPixel = stateBytesPerPixel(kernel.pendingRayCapacity);
     stats.addPhase("upload", secondsSince(start));
 
@@ -298,9 +291,23 @@ Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, con
     TileLoop loop(device, buffers, makeRenderParams(scene, stats.features, rootEntry, options.iterationBudget),
                   kernel, sums, persistent, kernels, stats);
     stats.addPhase("compile", loop.compile(firstPass));
-    return loop.render(firstPass.pipeline, tile, [&](double fraction) {
+    if (options.progress) options.progress("rendering", 0.0);
+    loop.render(firstPass.pipeline, grid, schedule);
+}
+
+TileGrid tileGridFor(const VulkanDevice& device, const Scene& scene, const VulkanRenderOptions& options) {
+    const std::uint32_t side = tileSizeFor(device.description(), options.tileSize);
+    return TileGrid{scene.camera.width, scene.camera.height,
+                    glm::uvec2(std::min(side, scene.camera.width), std::min(side, scene.camera.height))};
+}
+
+Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, const VulkanRenderOptions& options,
+                   RenderStats& stats) {
+    LocalTiles tiles(tileGridFor(device, scene, options), [&](double fraction) {
         if (options.progress) options.progress("rendering", fraction);
     });
+    renderVulkanTiles(device, scene, bvh, options, tiles, stats);
+    return std::move(tiles.image());
 }
 
 }  // namespace vitrum

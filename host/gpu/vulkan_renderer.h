@@ -8,6 +8,7 @@
 
 #include "bvh/bvh.h"
 #include "common/progress.h"
+#include "gpu/tile_schedule.h"
 #include "gpu/trace_pipeline.h"
 #include "gpu/vulkan_device.h"
 #include "image/image.h"
@@ -52,7 +53,16 @@ struct VulkanRenderOptions {
     PhaseCallback progress;
 };
 
+// Renders every tile of the image into one image.
 Image renderVulkan(VulkanDevice& device, const Scene& scene, const Bvh& bvh, const VulkanRenderOptions& options,
                    RenderStats& stats);
+
+// Renders the tiles `schedule` hands out (of tileGridFor's grid), each into the schedule.
+void renderVulkanTiles(VulkanDevice& device, const Scene& scene, const Bvh& bvh, const VulkanRenderOptions& options,
+                       TileSchedule& schedule, RenderStats& stats);
+
+// The tiles of the scene's image on this device with these options (options.tileSize, or the
+// device's default).
+TileGrid tileGridFor(const VulkanDevice& device, const Scene& scene, const VulkanRenderOptions& options);
 
 }  // namespace vitrum
