@@ -4,7 +4,10 @@
 
 namespace vitrum {
 
-int renderCommand(int argc, char** argv, int first);
+class MpiJob;
+
+// `job`: the MPI job mpirun started this process in, or null (distributed/mpi_job.h).
+int renderCommand(int argc, char** argv, int first, MpiJob* job = nullptr);
 int infoCommand(int argc, char** argv, int first);
 int diffCommand(int argc, char** argv, int first);
 int devicesCommand(int argc, char** argv, int first);

@@ -6,6 +6,7 @@
 #include "app/arguments.h"
 #include "app/commands.h"
 #include "common/byte_size.h"
+#include "distributed/mpi_job.h"
 #include "gpu/gpu_buffer.h"
 #include "gpu/tile_size.h"
 #include "gpu/trace_pipeline.h"
@@ -17,7 +18,8 @@ int devicesCommand(int argc, char** argv, int first) {
     if (wantsHelp(argc, argv, first)) {
         std::cout << "usage: vitrum devices\n\nLists the Vulkan devices, each with what decides how vitrum's kernel runs there: its\n"
                      "subgroups (which count the loop budget and sum the statistics) and its buffer limits.\n"
-                     "'vitrum render --device' takes an index or part of a name.\n";
+                     "'vitrum render --device' takes an index or part of a name. Last, whether this build\n"
+                     "can render one image with the processes of an MPI job.\n";
         return 0;
     }
     for (const DeviceDescription& d : VulkanDevice::listDevices()) {
@@ -46,6 +48,11 @@ int devicesCommand(int argc, char** argv, int first) {
                     describeBytes(d.deviceLocalBytes).c_str(), describeBytes(d.mappableDeviceLocalBytes).c_str(),
                     defaultTileSize(d));
     }
+    // Whether `mpirun -np N vitrum render` shares one image (docs/distributed.md).
+    if (builtWithMpi())
+        std::printf("MPI: %s: 'mpirun -np N vitrum render ...' renders one image with N processes\n",
+                    mpiLibrary().c_str());
+    else std::printf("MPI: %s\n", mpiLibrary().c_str());
     return 0;
 }
 

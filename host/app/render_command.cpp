@@ -18,6 +18,9 @@
 #include "common/error.h"
 #include "common/progress.h"
 #include "cpu/reference_renderer.h"
+#include "distributed/distributed_render.h"
+#include "distributed/launch.h"
+#include "distributed/mpi_job.h"
 #include "gpu/gpu_buffer.h"
 #include "gpu/tile_buffers.h"
 #include "gpu/tile_size.h"
@@ -25,6 +28,7 @@
 #include "gpu/vulkan_renderer.h"
 #include "image/image.h"
 #include "image/pixel_limit.h"
+#include "scene/scene_fingerprint.h"
 #include "scene/scene_loader.h"
 #include "shared/gpu_types.h"
 
@@ -103,15 +107,63 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
                          describeBytes(deviceLocal));
 }
 
+// What each rank of an MPI job takes of its host, before its device is opened
+// (distributed/launch.h); the progress bar and warnings are rank 0's alone.
+void joinJob(MpiJob& job, RenderCommand& command) {
+    if (command.backend != Backend::Vulkan && job.size() > 1)
+        throw InputError("--backend cpu renders in one process; run it without mpirun, or with -np 1");
+    shareCpuThreads(job.localSize());
+    if (command.backend == Backend::Vulkan && command.device.empty())
+        command.device = deviceForLocalRank(VulkanDevice::listDevices(), job.localRank());
+    if (job.rank() != 0) {
+        setenv("VITRUM_PROGRESS", "0", 1);
+        silenceWarnings();
+    } else {
+        // mpirun passes stderr through a pipe: rank 0 draws its bar unless told not to.
+        setenv("VITRUM_PROGRESS", "1", 0);
+    }
+}
+
+// The ranks agree on one grid of tiles (the smallest tile any rank's device takes) and check that
+// they loaded the same scene: a host with other copies of the files would render its tiles of
+// another image.
+void agreeOnTheImage(MpiJob& job, const VulkanDevice& device, const Scene& scene, const std::string& scenePath,
+                     VulkanRenderOptions& options) {
+    options.tileSize = job.smallest(tileSizeFor(device.description(), options.tileSize));
+    const std::vector<std::uint64_t> prints = job.allGather(sceneFingerprint(scene));
+    if (prints[std::size_t(job.rank())] != prints[0])
+        throw InputError(scenePath + " loaded here is not the scene rank 0 loaded: every rank must read the same "
+                                     "files (docs/distributed.md)");
+}
+
+void printDistributed(const DistributedReport& report) {
+    std::printf("ranks: %zu, tiles", report.ranks.size());
+    for (const RankReport& r : report.ranks)
+        std::printf("%s%llu", r.rank == 0 ? " " : " + ", (unsigned long long)r.tiles);
+    std::printf(" of %llu; %s sent, %.3f s assembling on rank 0\n", (unsigned long long)report.tiles,
+                describeBytes(report.bytesSent).c_str(), report.assembleSeconds);
+}
+
+nlohmann::json toJson(const DistributedReport& report) {
+    nlohmann::json ranks = nlohmann::json::array();
+    for (const RankReport& r : report.ranks)
+        ranks.push_back({{"rank", r.rank}, {"host", r.host}, {"device", r.device}, {"tiles", r.tiles},
+                         {"render_seconds", r.renderSeconds}});
+    return {{"ranks", ranks}, {"tiles", report.tiles}, {"bytes_sent", report.bytesSent},
+            {"assemble_seconds", report.assembleSeconds}};
+}
+
 }  // namespace
 
-int renderCommand(int argc, char** argv, int first) {
+int renderCommand(int argc, char** argv, int first, MpiJob* job) {
     if (wantsHelp(argc, argv, first)) {
         std::cout << renderHelp();
         return 0;
     }
     RenderCommand command = parseRenderCommand(argc, argv, first);
-    checkOutputs(command);
+    if (job) joinJob(*job, command);
+    const bool writes = !job || job->rank() == 0;  // in a job, rank 0 writes the image
+    if (writes) checkOutputs(command);
     using Clock = std::chrono::steady_clock;
     auto start = Clock::now();
 
@@ -132,9 +184,11 @@ int renderCommand(int argc, char** argv, int first) {
     applyOverrides(command, scene);
     if (const std::string note = largeRenderNote(scene); !note.empty()) warn(note);
     const double loadSeconds = std::chrono::duration<double>(Clock::now() - loadStart).count();
+    if (job && device) agreeOnTheImage(*job, *device, scene, command.scenePath, command.gpu);
     if (device) checkSceneFitsDevice(*device, scene, command.gpu);
 
     RenderStats stats;
+    DistributedReport distributed;
     stats.addPhase("load", loadSeconds);
     Image image;
     Bvh bvh;
@@ -147,7 +201,8 @@ int renderCommand(int argc, char** argv, int first) {
         if (command.backend == Backend::Vulkan) {
             stats.addPhase("device", deviceSeconds);
             command.gpu.progress = phases.callback();
-            image = renderVulkan(*device, scene, bvh, command.gpu, stats);
+            if (job) image = renderDistributed(*job, *device, scene, bvh, command.gpu, stats, distributed);
+            else image = renderVulkan(*device, scene, bvh, command.gpu, stats);
             if (device->validationMessages() > 0)
                 throw std::runtime_error(std::to_string(device->validationMessages()) +
                                          " Vulkan validation messages (see above)");
@@ -162,6 +217,7 @@ int renderCommand(int argc, char** argv, int first) {
                          " triangles, " + std::to_string(scene.camera.width) + " x " +
                          std::to_string(scene.camera.height) + " pixels)");
     }
+    if (!writes) return 0;
     auto writeStart = Clock::now();
     writeImage(image, command.outputPath);
     stats.addPhase("write", std::chrono::duration<double>(Clock::now() - writeStart).count());
@@ -184,6 +240,7 @@ int renderCommand(int argc, char** argv, int first) {
                 renderSeconds > 0 ? double(stats.totalRays()) / renderSeconds * 1e-6 : 0.0,
                 (unsigned long long)stats.primaryRays, (unsigned long long)stats.shadowRays,
                 (unsigned long long)stats.reflectionRays, (unsigned long long)stats.refractionRays);
+    if (job) printDistributed(distributed);
     if (stats.loopLimitSuspected || stats.traversalStackOverflows || stats.rayStackOverflows ||
         stats.mediumStackOverflows)
         std::fprintf(stderr, "vitrum: warning: limits hit: see --stats (loop limit %llu, traversal stack %llu, "
@@ -201,6 +258,7 @@ int renderCommand(int argc, char** argv, int first) {
                             {"min_weight", scene.settings.minWeight},
                             {"fresnel", int(scene.settings.fresnel)}};
         json["triangles"] = scene.triangles.size();
+        if (job) json["distributed"] = toJson(distributed);
         writeFileAtomically(command.statsPath, json.dump(2) + "\n");
     }
     return 0;

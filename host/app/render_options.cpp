@@ -31,7 +31,9 @@ std::string renderHelp() {
     return R"(usage: vitrum render SCENE -o OUT [options]
 
 Renders SCENE (a .json scene file or a bare .obj) and writes OUT: .png (8-bit sRGB), .pfm,
-.hdr or .exr (linear). Options override the scene's own settings.
+.hdr or .exr (linear). Options override the scene's own settings. Under mpirun, the
+processes share one image, rank 0 writing it ('mpirun -np N vitrum render ...',
+docs/distributed.md).
 
   -o, --output FILE        the image to write (required)
   --backend vulkan|cpu     Vulkan compute (default) or the CPU reference renderer

@@ -25,5 +25,8 @@ inline InputError inputError(const std::filesystem::path& file, int line, const 
 // Warnings go to stderr once each; tests can count them.
 void warn(const std::string& message);
 int warningCount();
+// Counted, no longer printed: the ranks of a distributed render but rank 0 load the same scene
+// and would repeat its warnings.
+void silenceWarnings();
 
 }  // namespace vitrum

@@ -18,9 +18,9 @@ struct CommandRun {
     std::string output;  // stdout and stderr together
 };
 
-// `environment` ("NAME=VALUE ...") goes in front of the command.
-inline CommandRun vitrum(const std::string& arguments, const std::string& environment = "") {
-    std::string command = environment + " " + std::string(VITRUM_BINARY) + " " + arguments + " 2>&1";
+// A shell command line, its stderr with its stdout.
+inline CommandRun run(const std::string& commandLine) {
+    const std::string command = commandLine + " 2>&1";
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) return {-1, "popen failed"};
     std::string output;
@@ -28,6 +28,11 @@ inline CommandRun vitrum(const std::string& arguments, const std::string& enviro
     while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
     int status = pclose(pipe);
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+// `environment` ("NAME=VALUE ...") goes in front of the command.
+inline CommandRun vitrum(const std::string& arguments, const std::string& environment = "") {
+    return run(environment + " " + std::string(VITRUM_BINARY) + " " + arguments);
 }
 
 // A fixture with a fresh folder per test.
