@@ -20,8 +20,10 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "bvh/bvh_traversal.h"
@@ -63,9 +65,10 @@ public:
     using Color = glm::vec<3, Real>;
     using MediumStack = std::vector<std::uint32_t>;  // objects the ray is inside, innermost last
 
-    ReferenceTracer(const Scene& scene, const Bvh& bvh, const SceneFeatures& features)
+    ReferenceTracer(const Scene& scene, const Bvh& bvh, const SceneFeatures& features, const RayIntersector* intersector)
         : scene_(scene),
           bvh_(bvh),
+          intersector_(intersector),
           vertices_(packTriangleVertices(bvh, scene.triangles)),
           mediumMaterials_(objectMediumMaterials(scene)),
           cameraMedia_(features.cameraMedia),
@@ -130,7 +133,7 @@ private:
         Ray<Real> ray{origin, d, Real(0), std::numeric_limits<Real>::max()};
         counters.logRay(ray, false);
         counters.maxRayDepth = std::max<std::uint64_t>(counters.maxRayDepth, depth);
-        auto found = traceClosest<Real>(bvh_.nodes, vertices_, ray, &counters.traversal);
+        auto found = closest(ray, counters);
         if (found) found = hitWhereSurfacesMeet(ray, *found, counters);
         const Color mu = mediumAttenuation(media);
         if (!found) {
@@ -253,7 +256,7 @@ private:
         // t in units of the whole segment: 0 < t < 1 excludes the light's own position.
         const Ray<Real> shadow{origin, lightPosition - origin, Real(0), Real(1)};
         counters.logRay(shadow, true);
-        return !traceAny<Real>(bvh_.nodes, vertices_, shadow, &counters.traversal);
+        return !any(shadow, counters);
     }
 
     // m_d: Kd, or the texel of map_Kd at (u, 1 - v), wrapping in both directions (render model,
@@ -370,7 +373,7 @@ private:
         hits.clear();
         counters.touchingProbes += 1;
         const Ray<Real> probe{rayOrigin, d, std::max(Real(0), hit.t - touchTolerance_), hit.t + touchTolerance_};
-        traceAll<Real>(bvh_.nodes, vertices_, probe, hits, &counters.traversal);
+        all(probe, hits, counters);
         const std::size_t first = crossings.size();
         for (const TriangleHit<Real>& h : hits) {
             const Triangle& tri = scene_.triangles[bvh_.triangleOrder[h.triangle]];
@@ -405,7 +408,7 @@ private:
         hits.clear();
         const Real t = nearest.t;
         const Ray<Real> probe{ray.origin, ray.direction, std::max(Real(0), t - touchTolerance_), t + touchTolerance_};
-        traceAll<Real>(bvh_.nodes, vertices_, probe, hits, &counters.traversal);
+        all(probe, hits, counters);
         auto nearer = [](const TriangleHit<Real>& h, const std::optional<TriangleHit<Real>>& than) {
             return !than || h.t < than->t || (h.t == than->t && h.triangle < than->triangle);
         };
@@ -420,6 +423,23 @@ private:
         if (leaving) return *leaving;
         if (underGlass && opaque) return *opaque;
         return nearest;
+    }
+
+    // What a ray hits: in the BVH, or by options.intersector where a benchmark gave one.
+    std::optional<TriangleHit<Real>> closest(const Ray<Real>& ray, TraceCounters& counters) const {
+        if constexpr (std::is_same_v<Real, float>)
+            if (intersector_) return intersector_->closest(ray);
+        return traceClosest<Real>(bvh_.nodes, vertices_, ray, &counters.traversal);
+    }
+    bool any(const Ray<Real>& ray, TraceCounters& counters) const {
+        if constexpr (std::is_same_v<Real, float>)
+            if (intersector_) return intersector_->any(ray);
+        return traceAny<Real>(bvh_.nodes, vertices_, ray, &counters.traversal);
+    }
+    void all(const Ray<Real>& ray, std::vector<TriangleHit<Real>>& hits, TraceCounters& counters) const {
+        if constexpr (std::is_same_v<Real, float>)
+            if (intersector_) return intersector_->all(ray, hits);
+        traceAll<Real>(bvh_.nodes, vertices_, ray, hits, &counters.traversal);
     }
 
     // The triangle's normal as its corners wind (not unit length): a ray along d meets the
@@ -444,6 +464,7 @@ private:
 
     const Scene& scene_;
     const Bvh& bvh_;
+    const RayIntersector* intersector_;  // null: the BVH's nodes
     std::vector<gpu::TriangleVertices> vertices_;
     std::vector<std::uint32_t> mediumMaterials_;
     MediumStack cameraMedia_;  // every primary ray starts inside them (SceneFeatures::cameraMedia)
@@ -465,7 +486,7 @@ private:
 template <class Real>
 void renderRows(const Scene& scene, const Bvh& bvh, unsigned threadCount, const ReferenceOptions& options,
                 Image& image, RenderStats& stats) {
-    const ReferenceTracer<Real> tracer(scene, bvh, stats.features);
+    const ReferenceTracer<Real> tracer(scene, bvh, stats.features, options.intersector);
     if (options.progress) options.progress(0.0);
     const std::uint32_t width = scene.camera.width, height = scene.camera.height;
     std::atomic<std::uint32_t> nextRow{0};
@@ -518,6 +539,8 @@ Image renderReference(const Scene& scene, const Bvh& bvh, const ReferenceOptions
     stats.backend = "cpu";
     stats.device = std::string("CPU reference (") + (options.doublePrecision ? "double" : "float") + "), " +
                    std::to_string(threads) + (threads == 1 ? " thread" : " threads");
+    if (options.intersector && options.doublePrecision)
+        throw std::invalid_argument("renderReference: an intersector traces float rays only");
     if (options.doublePrecision) renderRows<double>(scene, bvh, threads, options, image, stats);
     else renderRows<float>(scene, bvh, threads, options, image, stats);
     stats.addPhase("render", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

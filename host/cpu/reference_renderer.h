@@ -4,10 +4,12 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "bvh/bvh_traversal.h"
 #include "image/image.h"
 #include "stats/render_stats.h"
 #include "scene/scene.h"
@@ -25,6 +27,17 @@ struct TracedRay {
     std::uint32_t pixel;  // whose ray tree it belongs to: y * width + x
 };
 
+// Where the reference finds what a ray hits, if not in vitrum's BVH: another traversal of the same
+// triangles, for a benchmark (bench/embree_renderer.cpp). Rays are float; hits name triangles by
+// their index in the BVH's order (Bvh::triangleOrder), as traceClosest's do.
+class RayIntersector {
+public:
+    virtual ~RayIntersector() = default;
+    virtual std::optional<TriangleHit<float>> closest(const Ray<float>& ray) const = 0;
+    virtual bool any(const Ray<float>& ray) const = 0;  // a hit with tMin < t < tMax
+    virtual void all(const Ray<float>& ray, std::vector<TriangleHit<float>>& hits) const = 0;  // appends each
+};
+
 struct ReferenceOptions {
     bool doublePrecision = false;
     unsigned threads = 0;  // 0: all hardware threads
@@ -33,6 +46,9 @@ struct ReferenceOptions {
     // are not rays of the tree and are left out): the pixels in no particular order, each
     // pixel's rays together and in the order they were traced.
     std::vector<TracedRay>* tracedRays = nullptr;
+    // When set (float only), rays are traced by it instead of the BVH's nodes, which may then be
+    // empty: only Bvh::triangleOrder is read.
+    const RayIntersector* intersector = nullptr;
 };
 
 // Renders scene.camera with scene.settings. `bvh` was built over scene.triangles.

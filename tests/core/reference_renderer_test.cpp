@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <set>
 #include <vector>
@@ -636,6 +637,53 @@ TEST(ReferenceRenderer, ProbesForTouchingSurfacesOnlyWhereObjectsCanTouch) {
     RenderStats cubes = render("scenes/touching_cubes.json");
     EXPECT_TRUE(cubes.features.touchingMediaPossible);
     EXPECT_GT(cubes.touchingProbes, 0u);
+}
+
+// Another traversal can stand in for the BVH's (bench/embree_renderer.cpp puts Embree there): one
+// that is the same traversal, behind the interface, leaves the image as it was, bit for bit; each
+// of its three queries is used where the scene needs it (touching cubes: the probes' all-hits);
+// and the BVH's nodes are never read then.
+TEST(ReferenceRenderer, AnIntersectorStandsInForTheBvh) {
+    class SameTraversal final : public RayIntersector {
+    public:
+        SameTraversal(const Bvh& bvh, const Scene& scene)
+            : nodes_(bvh.nodes), vertices_(packTriangleVertices(bvh, scene.triangles)) {}
+        std::optional<TriangleHit<float>> closest(const Ray<float>& ray) const override {
+            ++calls[0];
+            return traceClosest<float>(nodes_, vertices_, ray);
+        }
+        bool any(const Ray<float>& ray) const override {
+            ++calls[1];
+            return traceAny<float>(nodes_, vertices_, ray);
+        }
+        void all(const Ray<float>& ray, std::vector<TriangleHit<float>>& hits) const override {
+            ++calls[2];
+            traceAll<float>(nodes_, vertices_, ray, hits);
+        }
+        mutable std::atomic<std::uint64_t> calls[3] = {};
+
+    private:
+        std::vector<gpu::BvhNode> nodes_;
+        std::vector<gpu::TriangleVertices> vertices_;
+    };
+    Scene scene = loadScene(std::string(VITRUM_SOURCE_DIR) + "/scenes/touching_cubes.json");
+    scene.camera.width = 48;
+    scene.camera.height = 36;
+    const Bvh bvh = buildBvh(scene.triangles);
+    RenderStats plain, through;
+    std::vector<TracedRay> rays;  // every ray the tree traced, closest-hit and shadow
+    const Image expected = renderReference(scene, bvh, ReferenceOptions{.tracedRays = &rays}, plain);
+    const auto shadowRays = std::size_t(std::count_if(rays.begin(), rays.end(), [](const TracedRay& r) { return r.anyHit; }));
+    const SameTraversal same(bvh, scene);
+    Bvh orderOnly;
+    orderOnly.triangleOrder = bvh.triangleOrder;  // no nodes: they must not be needed
+    const Image image = renderReference(scene, orderOnly, ReferenceOptions{.intersector = &same}, through);
+    EXPECT_EQ(image.pixels, expected.pixels);
+    EXPECT_EQ(same.calls[0].load(), rays.size() - shadowRays);
+    EXPECT_EQ(same.calls[1].load(), shadowRays);
+    EXPECT_GT(same.calls[2].load(), 0u);
+    EXPECT_THROW(renderReference(scene, orderOnly, ReferenceOptions{.doublePrecision = true, .intersector = &same}, through),
+                 std::invalid_argument);
 }
 
 }  // namespace
