@@ -5,7 +5,7 @@ JOBS ?= $(shell nproc)
 DEMO_SCENE ?= scenes/demo.json
 BENCH_RUNS ?= 5
 
-.PHONY: all deps drivers configure build demo test clean fuzz fuzz-deps sanitize bench-specialization bench-performance study
+.PHONY: all deps drivers configure build demo test clean fuzz fuzz-deps sanitize bench-specialization bench-performance bench-big-models study
 
 all: build
 
@@ -59,6 +59,16 @@ bench-performance: drivers build
 	echo >> docs/performance.md.partial
 	./bench/compare-drivers $(BENCH_RUNS) >> docs/performance.md.partial
 	mv docs/performance.md.partial docs/performance.md
+
+# Big models against an Embree 3 CPU renderer: docs/big-models.md (about 10 minutes on 2 cores;
+# the generated OBJs, 1.3 GB, are kept in /tmp/vitrum-big-models for the next run).
+BIG_MODEL_RUNS ?= 3
+bench-big-models: build
+	@./bench/install-deps
+	cmake -S . -B $(BUILD) > /dev/null
+	cmake --build $(BUILD) -j $(JOBS) --target vitrum_bench_embree_render vitrum_bench_big_sphere
+	./bench/big-models --runs $(BIG_MODEL_RUNS) > docs/big-models.md.partial
+	mv docs/big-models.md.partial docs/big-models.md
 
 # The accuracy study: docs/accuracy-vs-time.md and docs/study/ (8.5-25 minutes on 2 cores).
 STUDY_RUNS ?= 3

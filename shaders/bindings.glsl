@@ -64,13 +64,14 @@ mat3 loadVertexNormals(uint i) {
                 fetchVec4(shadingTexels, first, 2u).xyz);
 }
 
-// A triangle's texture coordinates at its three corners (TriangleShading's last two texels).
+// A triangle's texture coordinates at its three corners (TriangleShading's w components and its
+// last texel).
 void loadCornerUvs(uint i, out vec2 uv0, out vec2 uv1, out vec2 uv2) {
     uint first = kTriangleShadingTexels * i;
-    vec4 uv01 = fetchVec4(shadingTexels, first, 3u);
-    uv0 = uv01.xy;
-    uv1 = uv01.zw;
-    uv2 = fetchVec4(shadingTexels, first, 4u).xy;
+    vec4 v1uv2 = fetchVec4(shadingTexels, first, 3u);
+    uv0 = vec2(fetchVec4(shadingTexels, first, 0u).w, fetchVec4(shadingTexels, first, 1u).w);
+    uv1 = vec2(fetchVec4(shadingTexels, first, 2u).w, v1uv2.x);
+    uv2 = v1uv2.yz;
 }
 
 GpuMaterial loadMaterial(uint i) {

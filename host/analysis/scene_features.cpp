@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <set>
 #include <tuple>
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "common/parallel.h"
 #include "analysis/camera_medium.h"
 #include "analysis/double_box.h"
 #include "analysis/glass_proximity.h"
@@ -35,12 +37,19 @@ std::vector<DoubleBox> glassObjectBoxes(const Scene& scene) {
 }
 
 // An edge between two vertex positions, compared bit for bit (an OBJ's shared vertices have
-// identical positions in every triangle that uses them): its ends in a fixed order (the smaller
-// bits first) and whether a triangle runs along it the other way.
+// identical positions in every triangle that uses them): its ends' bits in a fixed order (the
+// smaller first), packed into three words so that a comparison is three integer compares, and
+// whether a triangle runs along it the other way.
 struct Edge {
-    std::array<std::uint32_t, 6> bits;
+    std::array<std::uint64_t, 3> bits;
     bool backwards;
-    bool operator<(const Edge& o) const { return std::tie(bits, backwards) < std::tie(o.bits, o.backwards); }
+    bool operator<(const Edge& o) const {
+        return std::tie(bits[0], bits[1], bits[2], backwards) < std::tie(o.bits[0], o.bits[1], o.bits[2], o.backwards);
+    }
+    bool isPoint() const {  // both ends the same position
+        return bits[0] >> 32 == (bits[1] & 0xffffffffu) && (bits[0] & 0xffffffffu) == bits[2] >> 32 &&
+               bits[1] >> 32 == (bits[2] & 0xffffffffu);
+    }
 };
 
 Edge edge(const glm::vec3& a, const glm::vec3& b) {
@@ -49,10 +58,8 @@ Edge edge(const glm::vec3& a, const glm::vec3& b) {
     std::memcpy(to.data(), &b, 12);
     const bool backwards = to < from;
     if (backwards) std::swap(from, to);
-    Edge e{{}, backwards};
-    std::copy(from.begin(), from.end(), e.bits.begin());
-    std::copy(to.begin(), to.end(), e.bits.begin() + 3);
-    return e;
+    auto pair = [](std::uint32_t high, std::uint32_t low) { return std::uint64_t(high) << 32 | low; };
+    return Edge{{pair(from[0], from[1]), pair(from[2], to[0]), pair(to[1], to[2])}, backwards};
 }
 
 // Whether the edges of one object's triangles make a closed, consistently wound mesh: every edge
@@ -60,12 +67,11 @@ Edge edge(const glm::vec3& a, const glm::vec3& b) {
 // map of a million-triangle object's edges took seconds and twice the memory.
 bool closedMesh(std::vector<Edge>& edges) {
     if (edges.size() % 2 != 0) return false;
-    std::sort(edges.begin(), edges.end());
+    parallelSort(edges.begin(), edges.end(), std::less<>());
     for (std::size_t i = 0; i < edges.size(); i += 2) {
         const Edge& forwards = edges[i];
         const Edge& back = edges[i + 1];
-        const bool point = std::equal(forwards.bits.begin(), forwards.bits.begin() + 3, forwards.bits.begin() + 3);
-        if (point || forwards.backwards || !back.backwards || forwards.bits != back.bits) return false;
+        if (forwards.isPoint() || forwards.backwards || !back.backwards || forwards.bits != back.bits) return false;
         if (i + 2 < edges.size() && edges[i + 2].bits == forwards.bits) return false;  // a third time
     }
     return true;
@@ -80,9 +86,8 @@ std::set<std::uint32_t> openObjects(const Scene& scene, Counts counts) {
     order.reserve(scene.triangles.size());
     for (std::uint32_t i = 0; i < scene.triangles.size(); ++i)
         if (counts(scene.triangles[i])) order.push_back(i);
-    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return scene.triangles[a].object < scene.triangles[b].object;
-    });
+    auto byObject = [&](std::uint32_t a, std::uint32_t b) { return scene.triangles[a].object < scene.triangles[b].object; };
+    if (!std::is_sorted(order.begin(), order.end(), byObject)) std::stable_sort(order.begin(), order.end(), byObject);
     std::set<std::uint32_t> open;
     std::vector<Edge> edges;
     for (std::size_t first = 0; first < order.size();) {

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <future>
 #include <new>
 #include <iostream>
 #include <optional>
@@ -11,6 +12,7 @@
 
 #include "app/arguments.h"
 #include "app/commands.h"
+#include "analysis/scene_features.h"
 #include "app/render_options.h"
 #include "bvh/bvh.h"
 #include "common/atomic_file.h"
@@ -61,16 +63,15 @@ std::string largeRenderNote(const Scene& scene) {
 
 // Refuses a scene whose GPU buffers would not fit the device, from the scene's counts alone: before
 // the BVH build, the packing and the upload (gpu/vulkan_renderer.cpp makes the buffers, and
-// GpuBuffer checks each again then). The BVH has at most 2n - 1 nodes for n triangles.
-void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const VulkanRenderOptions& options) {
-    const VkDeviceSize triangles = scene.triangles.size();
+// GpuBuffer checks each again then). The BVH has at most 2n - 1 nodes for n triangles. Without
+// `scene`, the buffers that the triangles alone size: the load checks them as soon as an OBJ's
+// statements tell how many triangles it has, before it makes them (SceneLoadOptions).
+void checkSceneFitsDevice(const VulkanDevice& device, std::size_t triangleCount, const Scene* scene,
+                          const VulkanRenderOptions& options) {
+    const VkDeviceSize triangles = triangleCount;
     if (triangles > gpu::kMaxTriangles)
         throw InputError("the scene has " + std::to_string(triangles) + " triangles; the Vulkan backend traces at most " +
                          std::to_string(gpu::kMaxTriangles));
-    VkDeviceSize texels = 0;
-    for (const Texture& texture : scene.textures) texels += texture.texels.size();
-    const std::uint32_t tile = tileSizeFor(device.description(), options.tileSize);
-    const glm::uvec2 tilePixels(std::min(tile, scene.camera.width), std::min(tile, scene.camera.height));
     // As gpu/vulkan_renderer.cpp binds them: the scene's geometry and materials as texel buffers.
     constexpr BufferKind kTexel = BufferKind::Texel, kStorage = BufferKind::Storage;
     struct Buffer {
@@ -83,13 +84,20 @@ void checkSceneFitsDevice(const VulkanDevice& device, const Scene& scene, const 
         {"BVH nodes", triangles * sizeof(gpu::TraversalNode), kTexel},  // at most triangles - 1 interior nodes
         {"triangle vertices", triangles * sizeof(gpu::TriangleVertices), kTexel},
         {"triangle normals and uvs", triangles * sizeof(gpu::TriangleShading), kTexel},
-        {"materials", scene.materials.size() * sizeof(gpu::GpuMaterial), kTexel},
-        {"lights", scene.lights.size() * sizeof(gpu::GpuLight), kTexel},
-        {"texture texels", texels * PixelLimit::kBytesPerPixel, kStorage},  // within the limit: loadScene refused more
     };
-    // The general kernel's: the scene's analysis, which may need fewer pending rays, comes later.
-    for (const TileBuffer& buffer : kTileBuffers)
-        buffers.push_back({buffer.what, tileBufferBytes(buffer, tilePixels, gpu::kRayStackSize), kStorage, true});
+    if (scene) {
+        VkDeviceSize texels = 0;
+        for (const Texture& texture : scene->textures) texels += texture.texels.size();
+        buffers.push_back({"materials", scene->materials.size() * sizeof(gpu::GpuMaterial), kTexel});
+        buffers.push_back({"lights", scene->lights.size() * sizeof(gpu::GpuLight), kTexel});
+        // Within the limit: loadScene refused more.
+        buffers.push_back({"texture texels", texels * PixelLimit::kBytesPerPixel, kStorage});
+        // The general kernel's: the scene's analysis, which may need fewer pending rays, comes later.
+        const std::uint32_t tile = tileSizeFor(device.description(), options.tileSize);
+        const glm::uvec2 tilePixels(std::min(tile, scene->camera.width), std::min(tile, scene->camera.height));
+        for (const TileBuffer& buffer : kTileBuffers)
+            buffers.push_back({buffer.what, tileBufferBytes(buffer, tilePixels, gpu::kRayStackSize), kStorage, true});
+    }
     VkDeviceSize total = 0;
     for (const auto& buffer : buffers) {
         if (buffer.bytes > bufferLimit(device, buffer.kind).bytes) {
@@ -180,12 +188,17 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
 
     auto loadStart = Clock::now();
     PhaseProgress phases;  // loading and building a big model take seconds (issue 52)
-    Scene scene = loadScene(command.scenePath, {texelLimit, phases.callback()});
+    SceneLoadOptions loadOptions{texelLimit, phases.callback()};
+    if (device)
+        loadOptions.checkTriangles = [&](std::size_t triangles) {
+            checkSceneFitsDevice(*device, triangles, nullptr, command.gpu);
+        };
+    Scene scene = loadScene(command.scenePath, loadOptions);
     applyOverrides(command, scene);
     if (const std::string note = largeRenderNote(scene); !note.empty()) warn(note);
     const double loadSeconds = std::chrono::duration<double>(Clock::now() - loadStart).count();
     if (job && device) agreeOnTheImage(*job, *device, scene, command.scenePath, command.gpu);
-    if (device) checkSceneFitsDevice(*device, scene, command.gpu);
+    if (device) checkSceneFitsDevice(*device, scene.triangles.size(), &scene, command.gpu);
 
     RenderStats stats;
     DistributedReport distributed;
@@ -193,9 +206,19 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
     Image image;
     Bvh bvh;
     try {
+        // The scene's analysis reads only the triangles, as the BVH build does: the two run side by
+        // side (each took seconds on a 3M-triangle model, issue 52).
+        std::future<std::pair<SceneFeatures, double>> analysis = std::async(std::launch::async, [&] {
+            const auto analysisStart = Clock::now();
+            SceneFeatures features = analyseScene(scene);
+            return std::pair(std::move(features), std::chrono::duration<double>(Clock::now() - analysisStart).count());
+        });
         bvh = buildBvh(scene.triangles, [&](double fraction) { phases.update("building the BVH", fraction); });
         phases.finish();
         stats.addPhase("bvh", bvh.stats.buildSeconds);
+        const auto [features, analysisSeconds] = analysis.get();
+        stats.addPhase("analysis", analysisSeconds);
+        command.gpu.features = &features;
         // The renderers report "rendering" from 0 as they begin to trace, after their analysis and
         // upload (the Vulkan one reports those phases too).
         if (command.backend == Backend::Vulkan) {
@@ -209,7 +232,8 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
         } else {
             ReferenceOptions options{.doublePrecision = command.doublePrecision,
                                      .threads = command.threads,
-                                     .progress = [&](double fraction) { phases.update("rendering", fraction); }};
+                                     .progress = [&](double fraction) { phases.update("rendering", fraction); },
+                                     .features = &features};
             image = renderReference(scene, bvh, options, stats);
         }
     } catch (const std::bad_alloc&) {

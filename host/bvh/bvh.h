@@ -1,6 +1,6 @@
 // Building the BVH: binned SAH over triangle centroids (Wald, "On fast Construction of SAH-based
-// Bounding Volume Hierarchies", 2007), then flattened depth-first into gpu::BvhNode
-// (pbrt-v4's LinearBVHNode layout; see shaders/shared/gpu_types.h).
+// Bounding Volume Hierarchies", 2007), large subtrees on other cores, flattened depth-first into
+// gpu::BvhNode (pbrt-v4's LinearBVHNode layout; see shaders/shared/gpu_types.h).
 #pragma once
 
 #include <cstdint>
@@ -31,7 +31,9 @@ struct Bvh {
 };
 
 // `progress`, when given, hears the share of the triangles placed in leaves so far, now and then.
-Bvh buildBvh(std::span<const Triangle> triangles, const std::function<void(double)>& progress = {});
+// `threads` build it (0: one a core); the tree is the same however many.
+Bvh buildBvh(std::span<const Triangle> triangles, const std::function<void(double)>& progress = {},
+             unsigned threads = 0);
 
 }  // namespace vitrum
 
@@ -40,7 +42,8 @@ namespace vitrum {
 // Triangle positions in BVH order, as the GPU and the CPU traversal read them (material index in
 // v0.w, object index in v1.w, both as uint bits).
 std::vector<gpu::TriangleVertices> packTriangleVertices(const Bvh& bvh, std::span<const Triangle> triangles);
-// The same into `into` (bvh.triangleOrder.size() of them).
-void packTriangleVertices(const Bvh& bvh, std::span<const Triangle> triangles, std::span<gpu::TriangleVertices> into);
+// The same into `into`: the triangles at BVH positions first, first + 1, ... (into.size() of them).
+void packTriangleVertices(const Bvh& bvh, std::span<const Triangle> triangles, std::span<gpu::TriangleVertices> into,
+                          std::size_t first = 0);
 
 }  // namespace vitrum

@@ -3,15 +3,20 @@
 // (pbrt-v4's LinearBVHNode): a node's first child is written right after it, so recursing into
 // the first child before the second produces the final array with no separate flattening pass.
 //
-// Triangles are referred to by an index array that is partitioned in place; a leaf is a
-// contiguous range of it, and the array becomes Bvh::triangleOrder.
+// Triangles are held as an array of their boxes, centroids and indices, partitioned in place (each
+// node's pass reads its range in order, not through an index array); a leaf is a contiguous range
+// of it, and its indices become Bvh::triangleOrder. Large subtrees are built on the machine's other
+// cores, into arrays joined in the same depth-first order.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <thread>
 
 #include "bvh/bvh.h"
 
@@ -58,64 +63,48 @@ std::uint32_t medianSplitDepth(std::uint32_t count) {
     return depth;
 }
 
+// A triangle as the build sees it.
+struct Primitive {
+    Box bounds;
+    glm::vec3 centroid;
+    std::uint32_t index;  // in the scene's triangles
+};
+
+// What every part of a build reads: the primitives, which the parts partition (each part its own
+// range of them), and the root's area.
+struct BuildInput {
+    std::vector<Primitive> primitives;
+    double rootArea = 1.0;
+    const std::function<void(double)>& progress;  // called by the part on the calling thread only
+    std::atomic<std::size_t> placed{0};           // triangles in the leaves made so far, all parts
+};
+
+// Builds one subtree into its own depth-first node array (indices local to it). Above a size, a
+// subtree's second child is built by another thread into a part of its own and appended after
+// the first child's nodes, its indices moved on: the array is the one a single thread makes.
 class Builder {
 public:
-    Builder(std::span<const Triangle> triangles, Bvh& bvh, const std::function<void(double)>& progress)
-        : bvh_(bvh), progress_(progress) {
-        const std::size_t n = triangles.size();
-        bounds_.resize(n);
-        centroids_.resize(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            Box b;
-            for (const glm::vec3& p : triangles[i].position) b.grow(p);
-            bounds_[i] = b;
-            centroids_[i] = 0.5f * (b.min + b.max);  // box centre: cheaper and as good as the mean
-        }
-        bvh_.triangleOrder.resize(n);
-        for (std::size_t i = 0; i < n; ++i) bvh_.triangleOrder[i] = static_cast<std::uint32_t>(i);
-        bvh_.nodes.reserve(n == 0 ? 1 : 2 * n);
-    }
+    Builder(BuildInput& input, unsigned spareThreads, bool reportsProgress)
+        : in_(input), spareThreads_(spareThreads), reportsProgress_(reportsProgress) {}
 
-    void build() {
-        const auto count = static_cast<std::uint32_t>(bvh_.triangleOrder.size());
-        if (count == 0) {
-            // The empty scene: one leaf with no triangles and a degenerate box at the origin, so
-            // that every traversal (CPU and GPU) works without a special case.
-            gpu::BvhNode leaf{};
-            leaf.boundsMin = glm::vec4(0.0f, 0.0f, 0.0f, std::bit_cast<float>(0u));
-            leaf.boundsMax = glm::vec4(0.0f, 0.0f, 0.0f, std::bit_cast<float>(0u));
-            bvh_.nodes.push_back(leaf);
-            bvh_.stats.nodeCount = 1;
-            bvh_.stats.leafCount = 1;
-            return;
-        }
-        rootArea_ = 0.0;
-        buildNode(0, count, 0);
-        bvh_.stats.nodeCount = static_cast<std::uint32_t>(bvh_.nodes.size());
-        bvh_.stats.sahCost = sahSum_;
-    }
+    std::vector<gpu::BvhNode> nodes;
+    std::uint32_t leafCount = 0, maxDepth = 0, maxLeafTriangles = 0;
+    double sahSum = 0.0;
 
-private:
-    struct Bin {
-        Box bounds;
-        std::uint32_t count = 0;
-    };
-
-    // Builds the subtree over triangleOrder[begin, end) at the given depth; returns its index.
+    // Builds the subtree over primitives[begin, end) at the given depth; returns its index.
     std::uint32_t buildNode(std::uint32_t begin, std::uint32_t end, std::uint32_t depth) {
-        auto& order = bvh_.triangleOrder;
+        const std::vector<Primitive>& primitives = in_.primitives;
         const std::uint32_t count = end - begin;
         Box box, centroidBox;
         for (std::uint32_t i = begin; i < end; ++i) {
-            box.grow(bounds_[order[i]]);
-            centroidBox.grow(centroids_[order[i]]);
+            box.grow(primitives[i].bounds);
+            centroidBox.grow(primitives[i].centroid);
         }
         const double area = box.area();
-        if (depth == 0) rootArea_ = area > 0.0 ? area : 1.0;  // a zero-area scene: plain counts
-        bvh_.stats.maxDepth = std::max(bvh_.stats.maxDepth, depth);
+        maxDepth = std::max(maxDepth, depth);
 
-        const auto index = static_cast<std::uint32_t>(bvh_.nodes.size());
-        bvh_.nodes.emplace_back();
+        const auto index = static_cast<std::uint32_t>(nodes.size());
+        nodes.emplace_back();
 
         std::uint32_t mid = begin;
         std::uint32_t axis = 0;
@@ -124,35 +113,86 @@ private:
             return index;
         }
         assert(mid > begin && mid < end);
-        sahSum_ += area / rootArea_ * kTraversalCost;
-        buildNode(begin, mid, depth + 1);  // first child: the next node
-        const std::uint32_t second = buildNode(mid, end, depth + 1);
-        gpu::BvhNode& node = bvh_.nodes[index];
+        sahSum += area / in_.rootArea * kTraversalCost;
+        std::uint32_t second = 0;
+        if (spareThreads_ > 0 && end - mid >= kParallelSubtree) {
+            // Half the spare threads go with the second child, half stay with this part.
+            const unsigned given = (spareThreads_ + 1) / 2;
+            spareThreads_ -= given;
+            Builder part(in_, given - 1, false);
+            part.nodes.reserve(2 * std::size_t(end - mid));
+            std::exception_ptr failed;  // out of memory, say: rethrown here
+            std::thread worker([&] {
+                try {
+                    part.buildNode(mid, end, depth + 1);
+                } catch (...) {
+                    failed = std::current_exception();
+                }
+            });
+            try {
+                buildNode(begin, mid, depth + 1);
+            } catch (...) {
+                worker.join();
+                throw;
+            }
+            worker.join();
+            if (failed) std::rethrow_exception(failed);
+            spareThreads_ += given;
+            second = append(std::move(part));
+        } else {
+            buildNode(begin, mid, depth + 1);  // first child: the next node
+            second = buildNode(mid, end, depth + 1);
+        }
+        gpu::BvhNode& node = nodes[index];
         node.boundsMin = glm::vec4(box.min, std::bit_cast<float>(second));
         node.boundsMax = glm::vec4(box.max, std::bit_cast<float>(gpu::kInteriorNodeFlag | axis));
         return index;
     }
 
-    void makeLeaf(std::uint32_t index, const Box& box, std::uint32_t first, std::uint32_t count, double area) {
-        assert(count >= 1 && count <= gpu::kMaxLeafTriangles);
-        gpu::BvhNode& node = bvh_.nodes[index];
-        node.boundsMin = glm::vec4(box.min, std::bit_cast<float>(first));
-        node.boundsMax = glm::vec4(box.max, std::bit_cast<float>(count));
-        bvh_.stats.leafCount += 1;
-        placed_ += count;
-        if (progress_ && placed_ >= nextReport_) {
-            progress_(double(placed_) / double(bvh_.triangleOrder.size()));
-            nextReport_ = placed_ + bvh_.triangleOrder.size() / 256 + 1;
+private:
+    // Subtrees smaller than this are not worth a thread.
+    static constexpr std::uint32_t kParallelSubtree = 1u << 16;
+
+    struct Bin {
+        Box bounds;
+        std::uint32_t count = 0;
+    };
+
+    // Appends a part's nodes after this one's; returns where its root went.
+    std::uint32_t append(Builder&& part) {
+        const auto offset = static_cast<std::uint32_t>(nodes.size());
+        for (gpu::BvhNode& node : part.nodes) {
+            if (std::bit_cast<std::uint32_t>(node.boundsMax.w) & gpu::kInteriorNodeFlag)
+                node.boundsMin.w = std::bit_cast<float>(std::bit_cast<std::uint32_t>(node.boundsMin.w) + offset);
         }
-        bvh_.stats.maxLeafTriangles = std::max(bvh_.stats.maxLeafTriangles, count);
-        sahSum_ += area / rootArea_ * kIntersectionCost * count;
+        nodes.insert(nodes.end(), part.nodes.begin(), part.nodes.end());
+        leafCount += part.leafCount;
+        maxDepth = std::max(maxDepth, part.maxDepth);
+        maxLeafTriangles = std::max(maxLeafTriangles, part.maxLeafTriangles);
+        sahSum += part.sahSum;
+        return offset;
     }
 
-    // Decides between a leaf (returns false) and a split of [begin, end) at `mid` along `axis`
+    void makeLeaf(std::uint32_t index, const Box& box, std::uint32_t first, std::uint32_t count, double area) {
+        assert(count >= 1 && count <= gpu::kMaxLeafTriangles);
+        gpu::BvhNode& node = nodes[index];
+        node.boundsMin = glm::vec4(box.min, std::bit_cast<float>(first));
+        node.boundsMax = glm::vec4(box.max, std::bit_cast<float>(count));
+        leafCount += 1;
+        const std::size_t placed = in_.placed.fetch_add(count, std::memory_order_relaxed) + count;
+        if (reportsProgress_ && in_.progress && placed >= nextReport_) {
+            in_.progress(double(placed) / double(in_.primitives.size()));
+            nextReport_ = placed + in_.primitives.size() / 256 + 1;
+        }
+        maxLeafTriangles = std::max(maxLeafTriangles, count);
+        sahSum += area / in_.rootArea * kIntersectionCost * count;
+    }
+
+// Decides between a leaf (returns false) and a split of [begin, end) at `mid` along `axis`
     // (returns true, the range already partitioned).
     bool chooseSplit(std::uint32_t begin, std::uint32_t end, std::uint32_t depth, const Box& box,
                      const Box& centroidBox, std::uint32_t& mid, std::uint32_t& axis) {
-        auto& order = bvh_.triangleOrder;
+        std::vector<Primitive>& primitives = in_.primitives;
         const std::uint32_t count = end - begin;
         if (count <= 2) return false;
 
@@ -166,9 +206,9 @@ private:
             if (count <= gpu::kMaxLeafTriangles) return false;
             mid = begin + count / 2;
             if (extent[axis] > 0.0f) {
-                std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                                 [&](std::uint32_t a, std::uint32_t b) {
-                                     return centroids_[a][axis] < centroids_[b][axis];
+                std::nth_element(primitives.begin() + begin, primitives.begin() + mid, primitives.begin() + end,
+                                 [&](const Primitive& a, const Primitive& b) {
+                                     return a.centroid[axis] < b.centroid[axis];
                                  });
             }
             return true;
@@ -176,38 +216,47 @@ private:
 
         // Binned SAH over all three axes: cost of a split relative to the node's area is
         // C_trav + (A_L N_L + A_R N_R) / A; kept multiplied by A to stay finite for flat nodes.
+        // The three axes' bins are filled in one pass over the triangles (each triangle's box and
+        // centroid fetched once), then swept axis by axis.
+        std::array<float, 3> lo{}, scale{};
+        std::array<bool, 3> binned{};
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = centroidBox.min[a];
+            scale[a] = kBinCount * (1.0f - 1e-6f) / extent[a];
+            binned[a] = extent[a] > 0.0f && std::isfinite(scale[a]);
+        }
+        std::array<std::array<Bin, kBinCount>, 3> bins{};
+        for (std::uint32_t i = begin; i < end; ++i) {
+            const glm::vec3 centroid = primitives[i].centroid;
+            const Box& bounds = primitives[i].bounds;
+            for (int a = 0; a < 3; ++a) {
+                if (!binned[a]) continue;
+                Bin& bin = bins[a][binOf(centroid[a], lo[a], scale[a])];
+                bin.count += 1;
+                bin.bounds.grow(bounds);
+            }
+        }
         float bestCost = std::numeric_limits<float>::infinity();
         int bestAxis = -1;
         int bestBin = 0;  // first bin of the second child
         for (int a = 0; a < 3; ++a) {
-            const float lo = centroidBox.min[a];
-            const float ext = extent[a];
-            if (!(ext > 0.0f)) continue;
-            const float scale = kBinCount * (1.0f - 1e-6f) / ext;
-            if (!std::isfinite(scale)) continue;
-            std::array<Bin, kBinCount> bins{};
-            for (std::uint32_t i = begin; i < end; ++i) {
-                const std::uint32_t t = order[i];
-                const int b = binOf(centroids_[t][a], lo, scale);
-                bins[b].count += 1;
-                bins[b].bounds.grow(bounds_[t]);
-            }
+            if (!binned[a]) continue;
             // Sweep from the right to get the area and count of every right side.
             std::array<float, kBinCount> rightArea{};
             std::array<std::uint32_t, kBinCount> rightCount{};
             Box right;
             std::uint32_t rc = 0;
             for (int b = kBinCount - 1; b > 0; --b) {
-                right.grow(bins[b].bounds);
-                rc += bins[b].count;
+                right.grow(bins[a][b].bounds);
+                rc += bins[a][b].count;
                 rightArea[b] = right.area();
                 rightCount[b] = rc;
             }
             Box left;
             std::uint32_t lc = 0;
             for (int b = 1; b < kBinCount; ++b) {
-                left.grow(bins[b - 1].bounds);
-                lc += bins[b - 1].count;
+                left.grow(bins[a][b - 1].bounds);
+                lc += bins[a][b - 1].count;
                 if (lc == 0 || rightCount[b] == 0) continue;
                 const float cost = left.area() * lc + rightArea[b] * rightCount[b];
                 if (cost < bestCost) {
@@ -232,12 +281,10 @@ private:
         if (count <= gpu::kMaxLeafTriangles && leafCost <= splitCost) return false;
 
         axis = static_cast<std::uint32_t>(bestAxis);
-        const float lo = centroidBox.min[bestAxis];
-        const float scale = kBinCount * (1.0f - 1e-6f) / extent[bestAxis];
-        auto* split = std::partition(order.data() + begin, order.data() + end, [&](std::uint32_t t) {
-            return binOf(centroids_[t][bestAxis], lo, scale) < bestBin;
+        auto* split = std::partition(primitives.data() + begin, primitives.data() + end, [&](const Primitive& p) {
+            return binOf(p.centroid[bestAxis], lo[bestAxis], scale[bestAxis]) < bestBin;
         });
-        mid = static_cast<std::uint32_t>(split - order.data());
+        mid = static_cast<std::uint32_t>(split - primitives.data());
         assert(mid > begin && mid < end);  // the same binning that counted both sides non-empty
         return true;
     }
@@ -250,31 +297,62 @@ private:
         return static_cast<int>(f);
     }
 
-    Bvh& bvh_;
-    std::vector<Box> bounds_;
-    std::vector<glm::vec3> centroids_;
-    double rootArea_ = 1.0;
-    double sahSum_ = 0.0;
-    const std::function<void(double)>& progress_;
-    std::size_t placed_ = 0;      // triangles in the leaves made so far
-    std::size_t nextReport_ = 0;  // progress_ hears of it when placed_ reaches this
+    BuildInput& in_;
+    unsigned spareThreads_;     // threads this part may still start
+    bool reportsProgress_;      // the part on the calling thread
+    std::size_t nextReport_ = 0;  // progress hears of it when the triangles placed reach this
 };
 
 }  // namespace
 
-Bvh buildBvh(std::span<const Triangle> triangles, const std::function<void(double)>& progress) {
+Bvh buildBvh(std::span<const Triangle> triangles, const std::function<void(double)>& progress, unsigned threads) {
     const auto start = std::chrono::steady_clock::now();
     Bvh bvh;
-    Builder builder(triangles, bvh, progress);
-    builder.build();
+    const std::size_t n = triangles.size();
+    bvh.triangleOrder.resize(n);
+    if (n == 0) {
+        // The empty scene: one leaf with no triangles and a degenerate box at the origin, so
+        // that every traversal (CPU and GPU) works without a special case.
+        gpu::BvhNode leaf{};
+        leaf.boundsMin = glm::vec4(0.0f, 0.0f, 0.0f, std::bit_cast<float>(0u));
+        leaf.boundsMax = glm::vec4(0.0f, 0.0f, 0.0f, std::bit_cast<float>(0u));
+        bvh.nodes.push_back(leaf);
+        bvh.stats.nodeCount = 1;
+        bvh.stats.leafCount = 1;
+    } else {
+        BuildInput input{.progress = progress};
+        input.primitives.resize(n);
+        Box root;
+        for (std::size_t i = 0; i < n; ++i) {
+            Box b;
+            for (const glm::vec3& p : triangles[i].position) b.grow(p);
+            // The box centre as centroid: cheaper and as good as the mean.
+            input.primitives[i] = {b, 0.5f * (b.min + b.max), static_cast<std::uint32_t>(i)};
+            root.grow(b);
+        }
+        const double rootArea = root.area();
+        input.rootArea = rootArea > 0.0 ? rootArea : 1.0;  // a zero-area scene: plain counts
+        if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+        Builder builder(input, threads - 1, true);
+        builder.nodes.reserve(2 * n);
+        builder.buildNode(0, static_cast<std::uint32_t>(n), 0);
+        for (std::size_t i = 0; i < n; ++i) bvh.triangleOrder[i] = input.primitives[i].index;
+        bvh.nodes = std::move(builder.nodes);
+        bvh.stats.nodeCount = static_cast<std::uint32_t>(bvh.nodes.size());
+        bvh.stats.leafCount = builder.leafCount;
+        bvh.stats.maxDepth = builder.maxDepth;
+        bvh.stats.maxLeafTriangles = builder.maxLeafTriangles;
+        bvh.stats.sahCost = builder.sahSum;
+    }
     if (progress) progress(1.0);
     bvh.stats.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return bvh;
 }
 
-void packTriangleVertices(const Bvh& bvh, std::span<const Triangle> triangles, std::span<gpu::TriangleVertices> into) {
+void packTriangleVertices(const Bvh& bvh, std::span<const Triangle> triangles, std::span<gpu::TriangleVertices> into,
+                          std::size_t first) {
     for (std::size_t i = 0; i < into.size(); ++i) {
-        const Triangle& tri = triangles[bvh.triangleOrder[i]];
+        const Triangle& tri = triangles[bvh.triangleOrder[first + i]];
         into[i].v0 = glm::vec4(tri.position[0], std::bit_cast<float>(tri.material));
         into[i].v1 = glm::vec4(tri.position[1], std::bit_cast<float>(tri.object));
         into[i].v2 = glm::vec4(tri.position[2], 0.0f);

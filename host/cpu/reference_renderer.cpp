@@ -528,10 +528,14 @@ void renderRows(const Scene& scene, const Bvh& bvh, unsigned threadCount, const 
 }  // namespace
 
 Image renderReference(const Scene& scene, const Bvh& bvh, const ReferenceOptions& options, RenderStats& stats) {
-    const auto analysisStart = std::chrono::steady_clock::now();
-    stats.features = analyseScene(scene);
-    stats.addPhase("analysis",
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - analysisStart).count());
+    if (options.features) {
+        stats.features = *options.features;
+    } else {
+        const auto analysisStart = std::chrono::steady_clock::now();
+        stats.features = analyseScene(scene);
+        stats.addPhase("analysis",
+                       std::chrono::duration<double>(std::chrono::steady_clock::now() - analysisStart).count());
+    }
     const auto start = std::chrono::steady_clock::now();
     unsigned threads = options.threads != 0 ? options.threads : std::thread::hardware_concurrency();
     threads = std::max(1u, std::min(threads, std::max(1u, scene.camera.height)));

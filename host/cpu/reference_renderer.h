@@ -49,6 +49,8 @@ struct ReferenceOptions {
     // When set (float only), rays are traced by it instead of the BVH's nodes, which may then be
     // empty: only Bvh::triangleOrder is read.
     const RayIntersector* intersector = nullptr;
+    // The scene's analysis, when the caller has made it already; null: the render makes it.
+    const SceneFeatures* features = nullptr;
 };
 
 // Renders scene.camera with scene.settings. `bvh` was built over scene.triangles.

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "common/error.h"
+#include "common/huge_pages.h"
 #include "gpu/vulkan_error.h"
 
 namespace vitrum {
@@ -131,8 +132,12 @@ GpuBuffer::GpuBuffer(const VulkanDevice& device, VkDeviceSize size, VkBufferUsag
     VK_CHECK(vkBindBufferMemory(device_, buffer, memory, 0));
     const VkMemoryPropertyFlags mappable = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     const bool map = use == MemoryUse::Upload ? !stagedUploadsForced() : use != MemoryUse::DeviceOnly;
-    if (map && (memoryTypes[*type].propertyFlags & mappable) == mappable)
+    if (map && (memoryTypes[*type].propertyFlags & mappable) == mappable) {
         VK_CHECK(vkMapMemory(device_, memory, 0, VK_WHOLE_SIZE, 0, &mapped_));
+        // A device on the CPU (lavapipe) maps its memory as the process's own: huge pages spare
+        // a big model's upload a page fault every 4 KiB.
+        if (device.description().cpu) adviseHugePages(mapped_, size);
+    }
 }
 
 void GpuBuffer::fill(VulkanDevice& device, std::span<const std::byte> bytes) {

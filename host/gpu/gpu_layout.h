@@ -7,7 +7,7 @@ namespace vitrum::gpu {
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(TraversalNode) == 64);
 static_assert(sizeof(TriangleVertices) == 48);
-static_assert(sizeof(TriangleShading) == 80);
+static_assert(sizeof(TriangleShading) == 64);
 static_assert(sizeof(GpuMaterial) == 64);
 static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(GpuLight) == 32);

@@ -69,11 +69,10 @@ TraceBuffers makeBuffers(VulkanDevice& device, const Scene& scene, const Bvh& bv
     auto uploaded = [&](double fraction) {
         if (progress) progress("uploading the scene", fraction);
     };
-    {
-        const TraversalNodes nodes = makeTraversalNodes(bvh.nodes);
-        rootEntry = nodes.rootEntry;
-        b.add(gpu::kBindingNodes, makeTexelBuffer(device, spanOf(nodes.nodes), "BVH nodes"));
-    }
+    rootEntry = traversalRootEntry(bvh.nodes);
+    b.add(gpu::kBindingNodes, makeTexelBufferWritten<gpu::TraversalNode>(
+                                  device, traversalNodeCount(bvh.nodes), "BVH nodes",
+                                  [&](std::span<gpu::TraversalNode> into) { writeTraversalNodes(bvh.nodes, into); }));
     uploaded(1.0 / 3.0);
     const std::size_t triangles = bvh.triangleOrder.size();
     b.add(gpu::kBindingVertices, makeTexelBufferWritten<gpu::TriangleVertices>(
@@ -255,11 +254,15 @@ void renderVulkanTiles(VulkanDevice& device, const Scene& scene, const Bvh& bvh,
                          " for every pixel to finish");
     stats.backend = "vulkan";
     stats.device = device.name();
-    const auto analysisStart = Clock::now();
-    if (options.progress) options.progress("analysing the scene", 0.0);
-    stats.features = analyseScene(scene);
-    if (options.progress) options.progress("analysing the scene", 1.0);
-    stats.addPhase("analysis", secondsSince(analysisStart));
+    if (options.features) {
+        stats.features = *options.features;
+    } else {
+        const auto analysisStart = Clock::now();
+        if (options.progress) options.progress("analysing the scene", 0.0);
+        stats.features = analyseScene(scene);
+        if (options.progress) options.progress("analysing the scene", 1.0);
+        stats.addPhase("analysis", secondsSince(analysisStart));
+    }
     const TraceSpecialization kernel =
         options.specialize ? TraceSpecialization::forScene(scene, stats.features) : TraceSpecialization::general();
     stats.kernel = kernel;
@@ -272,6 +275,11 @@ void renderVulkanTiles(VulkanDevice& device, const Scene& scene, const Bvh& bvh,
     const TraceBuffers buffers =
         makeBuffers(device, scene, bvh, grid.tile, kernel.pendingRayCapacity, options.progress, rootEntry);
     stats.stateBytesPerPixel = stateBytesPerPixel(kernel.pendingRayCapacity);
+    for (std::uint32_t binding = 0; binding < gpu::kTraceBindingCount; ++binding) {
+        const bool perTile = std::any_of(kTileBuffers.begin(), kTileBuffers.end(),
+                                         [&](const TileBuffer& b) { return b.binding == binding; });
+        (perTile ? stats.tileBytes : stats.sceneBytes) += buffers.bound[binding]->size();
+    }
     stats.addPhase("upload", secondsSince(start));
 
     start = Clock::now();

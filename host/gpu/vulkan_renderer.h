@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 
+#include "analysis/scene_features.h"
 #include "bvh/bvh.h"
 #include "common/progress.h"
 #include "gpu/tile_schedule.h"
@@ -48,6 +49,9 @@ struct VulkanRenderOptions {
     // Kernels kept from earlier renders on this device (gpu/trace_kernel_cache.h): each is created
     // and compiled once. Null: this render creates its own and drops them at the end.
     TraceKernelCache* kernels = nullptr;
+    // The scene's analysis (analysis/scene_features.h), when the caller has made it already (the
+    // render command makes it alongside the BVH build). Null: the render makes it.
+    const SceneFeatures* features = nullptr;
     // "analysing the scene" (0, then 1), "uploading the scene" by its buffers, then "rendering"
     // from 0 as tracing begins, by tiles.
     PhaseCallback progress;

@@ -1,5 +1,6 @@
 #include "gpu_input/packed_scene.h"
 
+#include "common/parallel.h"
 #include "render_model/medium_materials.h"
 
 #include <bit>
@@ -18,24 +19,27 @@ float bits(std::uint32_t value) { return std::bit_cast<float>(value); }
 }  // namespace
 
 void packVertices(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleVertices> into) {
-    packTriangleVertices(bvh, scene.triangles, into);
-    for (std::size_t i = 0; i < into.size(); ++i) {
-        const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
-        if (scene.materials[t.material].model == MaterialModel::Glass) into[i].v2.w = bits(gpu::kTriangleGlass);
-    }
+    parallelFor(into.size(), [&](std::size_t begin, std::size_t end) {
+        packTriangleVertices(bvh, scene.triangles, into.subspan(begin, end - begin), begin);
+        for (std::size_t i = begin; i < end; ++i) {
+            const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
+            if (scene.materials[t.material].model == MaterialModel::Glass) into[i].v2.w = bits(gpu::kTriangleGlass);
+        }
+    });
 }
 
 void packShading(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleShading> into) {
-    for (std::size_t i = 0; i < into.size(); ++i) {
-        const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
-        into[i] = {
-            .n0 = glm::vec4(t.normal[0], 0.0f),
-            .n1 = glm::vec4(t.normal[1], 0.0f),
-            .n2 = glm::vec4(t.normal[2], 0.0f),
-            .uv01 = glm::vec4(t.uv[0], t.uv[1]),
-            .uv2 = glm::vec4(t.uv[2], 0.0f, 0.0f),
-        };
-    }
+    parallelFor(into.size(), [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
+            into[i] = {
+                .n0u0 = glm::vec4(t.normal[0], t.uv[0].x),
+                .n1v0 = glm::vec4(t.normal[1], t.uv[0].y),
+                .n2u1 = glm::vec4(t.normal[2], t.uv[1].x),
+                .v1uv2 = glm::vec4(t.uv[1].y, t.uv[2], 0.0f),
+            };
+        }
+    });
 }
 
 PackedTables packTables(const Scene& scene) {

@@ -26,8 +26,9 @@ struct PackedTables {
 PackedTables packTables(const Scene& scene);
 
 // The arrays a triangle, in BVH order (bvh.triangleOrder.size() of each), each written on its own
-// where it is to live: the renderer writes them into the device's buffers where the host can map
-// them, so that a big model's host memory holds no second copy (192 bytes a triangle).
+// where it is to live, on every core: the renderer writes them into the device's buffers where the
+// host can map them, so that a big model's host memory holds no second copy (112 bytes a triangle,
+// and the BVH nodes', gpu_input/traversal_nodes.h).
 void packVertices(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleVertices> into);  // with the glass flag
 void packShading(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleShading> into);
 

@@ -1,5 +1,6 @@
 #include "gpu_input/traversal_nodes.h"
 
+#include <algorithm>
 #include <bit>
 #include <stdexcept>
 
@@ -22,16 +23,18 @@ std::uint32_t traversalEntry(const gpu::BvhNode& node, std::uint32_t interiorInd
 
 }  // namespace
 
-TraversalNodes makeTraversalNodes(std::span<const gpu::BvhNode> nodes) {
-    TraversalNodes out;
-    if (nodes.empty()) return out;  // no triangles: the root is an empty leaf
+std::size_t traversalNodeCount(std::span<const gpu::BvhNode> nodes) {
+    return std::size_t(std::count_if(nodes.begin(), nodes.end(), isInterior));
+}
+
+void writeTraversalNodes(std::span<const gpu::BvhNode> nodes, std::span<gpu::TraversalNode> into) {
+    if (into.size() != traversalNodeCount(nodes)) throw std::logic_error("writeTraversalNodes: wrong node count");
     // Interior nodes are numbered in their depth-first order, so node 0 is the root.
     std::vector<std::uint32_t> interiorIndex(nodes.size(), 0);
     std::uint32_t interior = 0;
     for (std::size_t i = 0; i < nodes.size(); ++i)
         if (isInterior(nodes[i])) interiorIndex[i] = interior++;
-    out.rootEntry = traversalEntry(nodes[0], 0);
-    out.nodes.reserve(interior);
+    std::size_t written = 0;
     for (std::size_t i = 0; i < nodes.size(); ++i) {
         const gpu::BvhNode& node = nodes[i];
         if (!isInterior(node)) continue;
@@ -39,13 +42,25 @@ TraversalNodes makeTraversalNodes(std::span<const gpu::BvhNode> nodes) {
         const gpu::BvhNode& c0 = nodes[children[0]];
         const gpu::BvhNode& c1 = nodes[children[1]];
         const std::uint32_t axis = std::bit_cast<std::uint32_t>(node.boundsMax.w) & 3u;
-        out.nodes.push_back({
+        into[written++] = {
             .min0 = glm::vec4(glm::vec3(c0.boundsMin), std::bit_cast<float>(traversalEntry(c0, interiorIndex[children[0]]))),
             .max0 = glm::vec4(glm::vec3(c0.boundsMax), std::bit_cast<float>(axis)),
             .min1 = glm::vec4(glm::vec3(c1.boundsMin), std::bit_cast<float>(traversalEntry(c1, interiorIndex[children[1]]))),
             .max1 = glm::vec4(glm::vec3(c1.boundsMax), 0.0f),
-        });
+        };
     }
+}
+
+std::uint32_t traversalRootEntry(std::span<const gpu::BvhNode> nodes) {
+    // No triangles: the root is an empty leaf.
+    return nodes.empty() ? gpu::kLeafEntryFlag : traversalEntry(nodes[0], 0);
+}
+
+TraversalNodes makeTraversalNodes(std::span<const gpu::BvhNode> nodes) {
+    TraversalNodes out;
+    out.nodes.resize(traversalNodeCount(nodes));
+    writeTraversalNodes(nodes, out.nodes);
+    out.rootEntry = traversalRootEntry(nodes);
     return out;
 }
 

@@ -17,4 +17,10 @@ struct TraversalNodes {
 
 TraversalNodes makeTraversalNodes(std::span<const gpu::BvhNode> nodes);
 
+// The same in parts, for writing in place (a big model's nodes straight into the GPU's buffer):
+// the number of traversal nodes, the nodes into `into` (that many), and the root's entry.
+std::size_t traversalNodeCount(std::span<const gpu::BvhNode> nodes);
+void writeTraversalNodes(std::span<const gpu::BvhNode> nodes, std::span<gpu::TraversalNode> into);
+std::uint32_t traversalRootEntry(std::span<const gpu::BvhNode> nodes);
+
 }  // namespace vitrum

@@ -1,6 +1,9 @@
 // What loading a scene may be told: the limit on its textures of the device it will be rendered
-// on, and where to report progress.
+// on, a check of its triangle count, and where to report progress.
 #pragma once
+
+#include <cstddef>
+#include <functional>
 
 #include "common/progress.h"
 #include "scene/texel_limit.h"
@@ -10,6 +13,10 @@ namespace vitrum {
 struct SceneLoadOptions {
     TexelLimit texelLimit;
     PhaseCallback progress;  // may be empty
+    // Called with the scene's triangle count so far as soon as an OBJ's statements tell how many
+    // it adds, before they are made (the long part of a big model's load), so that a render can
+    // refuse a scene too large for its device there (by throwing). May be empty.
+    std::function<void(std::size_t triangles)> checkTriangles;
 };
 
 }  // namespace vitrum

@@ -30,6 +30,7 @@ nlohmann::json toJson(const RenderStats& stats) {
         result["kernel"] = toJson(*stats.kernel);
         result["kernel"]["state_bytes_per_pixel"] = stats.stateBytesPerPixel;
         result["kernel"]["tile_size"] = stats.tileSize;
+        result["device_bytes"] = {{"scene", stats.sceneBytes}, {"tile", stats.tileBytes}};
     }
     return result;
 }

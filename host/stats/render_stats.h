@@ -27,6 +27,9 @@ struct RenderStats : TraceCounts {
     std::optional<TraceSpecialization> kernel;  // GPU: what the kernel was built for
     std::uint64_t stateBytesPerPixel = 0;      // GPU: trace state and pending rays of one pixel
     std::uint32_t tileSize = 0;                // GPU: pixels a side of the tiles rendered
+    // GPU: bytes of the device buffers: the scene's (geometry, materials, textures, parameters,
+    // statistics) and the tile's (trace state, pending rays, stacks and pixels of one tile).
+    std::uint64_t sceneBytes = 0, tileBytes = 0;
 
     void addPhase(const std::string& name, double seconds) { phaseSeconds.emplace_back(name, seconds); }
     double seconds(const std::string& phase) const;

@@ -56,14 +56,14 @@ struct TriangleVertices {
     vec4 v2;
 };
 
-// Shading attributes. n0..n2 are the vertex normals (the geometric normal where the file has
-// none), uv01 = (u0, v0, u1, v1), uv2 = (u2, v2, -, -).
+// Shading attributes in four texels: the vertex normals n0..n2 (the geometric normal where the
+// file has none) in the first three's xyz, the corners' texture coordinates in the rest:
+// n0u0 = (n0, u0), n1v0 = (n1, v0), n2u1 = (n2, u1), v1uv2 = (v1, u2, v2, -).
 struct TriangleShading {
-    vec4 n0;
-    vec4 n1;
-    vec4 n2;
-    vec4 uv01;
-    vec4 uv2;
+    vec4 n0u0;
+    vec4 n1v0;
+    vec4 n2u1;
+    vec4 v1uv2;
 };
 
 // ---- Materials ------------------------------------------------------------------------------
@@ -113,7 +113,7 @@ VITRUM_CONST uint kFresnelSchlickExp2 = 2u;
 VITRUM_CONST uint kTraversalNodeTexels = 4u;
 VITRUM_CONST uint kTraceStateTexels = 16u;  // a pixel's saved state (shaders/suspend.glsl)
 VITRUM_CONST uint kTriangleVerticesTexels = 3u;
-VITRUM_CONST uint kTriangleShadingTexels = 5u;
+VITRUM_CONST uint kTriangleShadingTexels = 4u;
 VITRUM_CONST uint kGpuMaterialTexels = 4u;
 VITRUM_CONST uint kGpuLightTexels = 2u;
 

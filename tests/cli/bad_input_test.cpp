@@ -427,6 +427,20 @@ TEST_F(CliBadInput, SceneTooLargeForTheDeviceIsRefusedEarly) {
     expectRefused(kGeosphere + " --width 2000 --height 1000",
                   {"pixels of one tile needs 1 MiB", "allows 1000000 bytes", "a smaller --tile needs less"},
                   "VITRUM_MAX_BUFFER_BYTES=1000000");
+    // An OBJ too large is refused as soon as its statements give its triangles' count, before it
+    // makes them (the long part of a big model's load): before the face whose index is out of
+    // range is met. 101 triangles need 6464 bytes of BVH nodes at most.
+    std::string strip = "v 0 0 0\nv 0 1 0\n";
+    for (int i = 1; i <= 51; ++i) strip += "v " + std::to_string(i) + " 0 0\nv " + std::to_string(i) + " 1 0\n";
+    for (int i = 0; i < 50; ++i) {
+        const int a = 2 * i + 1;
+        strip += "f " + std::to_string(a) + " " + std::to_string(a + 2) + " " + std::to_string(a + 3) + "\n";
+        strip += "f " + std::to_string(a) + " " + std::to_string(a + 3) + " " + std::to_string(a + 1) + "\n";
+    }
+    write("strip.obj", strip + "f 1 2 999\n");
+    expectRefused(path("strip.obj") + " --width 16 --height 16", {"does not fit the device", "BVH nodes needs 6464 bytes"},
+                  "VITRUM_MAX_BUFFER_BYTES=4096");
+    expectRefused(path("strip.obj") + " --width 16 --height 16", {"uses index 999"});  // where the triangles fit
     // The CPU backend has no such limit.
     CommandRun r = vitrum("render " + kGeosphere + " --backend cpu --width 8 --height 8 -o " + path("cpu.png"),
                           "VITRUM_MAX_BUFFER_BYTES=4096");

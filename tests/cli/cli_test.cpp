@@ -44,6 +44,12 @@ TEST_F(Cli, GeosphereRendersTheSameOnBothBackends) {
     for (const char* phase : {"device", "load", "analysis", "bvh", "upload", "pipeline", "render", "write"})
         EXPECT_TRUE(stats["seconds"].contains(phase)) << phase;
     EXPECT_NE(gpu.output.find("Mrays/s"), std::string::npos);
+    // The device's buffers: at least the triangles' vertices (48 bytes each) for the scene, and the
+    // trace state of every pixel of the one tile the image fits in.
+    const auto triangles = stats["triangles"].get<std::uint64_t>();
+    EXPECT_GE(stats["device_bytes"]["scene"].get<std::uint64_t>(), triangles * 48);
+    EXPECT_GE(stats["device_bytes"]["tile"].get<std::uint64_t>(),
+              96 * 72 * stats["kernel"]["state_bytes_per_pixel"].get<std::uint64_t>());
 
     CommandRun diff = vitrum("diff " + path("gpu.pfm") + " " + path("cpu.pfm") + " --heatmap " + path("heat.png"));
     EXPECT_EQ(diff.exitCode, 0) << diff.output;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <random>
@@ -253,6 +254,27 @@ TEST(Bvh, BuildReportsItsProgress) {
     const Bvh quiet = buildBvh(triangles);
     EXPECT_EQ(bvh.triangleOrder, quiet.triangleOrder);
     EXPECT_EQ(bvh.stats.sahCost, quiet.stats.sahCost);
+}
+
+// Subtrees of 65,536 triangles and more are built by other threads and joined in depth-first
+// order: the nodes and the triangle order are those one thread builds, byte for byte, whatever the
+// number of threads (the SAH sums, added in another order, to rounding).
+TEST(Bvh, ThreadsBuildTheTreeOneThreadBuilds) {
+    for (const auto& triangles : {randomSoup(400'000, 11), sphereGrid(3, 80)}) {
+        const Bvh one = buildBvh(triangles, {}, 1);
+        ASSERT_GT(one.triangleOrder.size(), 300'000u);
+        for (unsigned threads : {2u, 3u, 8u}) {
+            SCOPED_TRACE(std::to_string(threads) + " threads");
+            const Bvh many = buildBvh(triangles, {}, threads);
+            ASSERT_EQ(many.nodes.size(), one.nodes.size());
+            EXPECT_EQ(std::memcmp(many.nodes.data(), one.nodes.data(), one.nodes.size() * sizeof(gpu::BvhNode)), 0);
+            EXPECT_EQ(many.triangleOrder, one.triangleOrder);
+            EXPECT_EQ(many.stats.leafCount, one.stats.leafCount);
+            EXPECT_EQ(many.stats.maxDepth, one.stats.maxDepth);
+            EXPECT_EQ(many.stats.maxLeafTriangles, one.stats.maxLeafTriangles);
+            EXPECT_NEAR(many.stats.sahCost, one.stats.sahCost, 1e-9 * one.stats.sahCost);
+        }
+    }
 }
 
 TEST(Bvh, RandomSoup) { checkMesh(randomSoup(5000, 42), 4000); }

@@ -258,6 +258,31 @@ TEST(SceneObj, NonFiniteCoordinatesAreErrorsWithLine) {
     expectInputError([&] { loadScene(obj); }, {"words.obj:2:", "v expects three numbers"});
 }
 
+// A big OBJ is scanned in parts, one a core (issue 52): an error far into it is named by its own
+// line, the first of two errors is the one reported, and statements after the split still count.
+TEST(SceneObj, ABigFileScannedInPartsNamesTheLineOfItsFirstError) {
+    fs::path dir = tempDir();
+    std::string text = "mtllib big.mtl\n";
+    const int vertexLines = 2'000'000;  // about 40 MB: two parts or more wherever there are two cores
+    for (int i = 0; i < vertexLines; ++i) text += "v " + std::to_string(i % 1000) + ".25 1.5 " + std::to_string(i / 1000) + "\n";
+    const std::string faces = "f 1 2 1001\nusemtl glass\nf 2 1002 1001\n";
+    write(dir / "big.mtl", "newmtl glass\nillum 7\nNi 1.5\n");
+    const Scene scene = loadScene(write(dir / "big.obj", text + faces));
+    ASSERT_EQ(scene.triangles.size(), 2u);
+    EXPECT_NE(scene.materials[scene.triangles[1].material].model, scene.materials[scene.triangles[0].material].model);
+    EXPECT_EQ(scene.materials[scene.triangles[1].material].model, MaterialModel::Glass);
+
+    std::string bad = text;
+    const std::size_t at = bad.find("\nv ", bad.size() - 200) + 1;
+    const int badLine = int(std::count(bad.begin(), bad.begin() + std::ptrdiff_t(at), '\n')) + 1;
+    ASSERT_GT(badLine, vertexLines / 2);  // in the file's last part
+    bad.insert(at, "v 1 nan 0\n");
+    expectInputError([&] { loadScene(write(dir / "late.obj", bad + faces)); },
+                     {"late.obj:" + std::to_string(badLine) + ":", "not a finite number"});
+    bad.insert(bad.find('\n') + 1, "v 1 2 x\n");  // line 2: the first error
+    expectInputError([&] { loadScene(write(dir / "two.obj", bad + faces)); }, {"two.obj:2:", "v expects three numbers"});
+}
+
 // Skin weights ("vw", tinyobjloader's extension) are ignored with one warning: tinyobjloader
 // converts their joint numbers to int unchecked, undefined beyond the int range (found by fuzzing).
 TEST(SceneObj, SkinWeightLinesAreIgnoredWithAWarning) {
