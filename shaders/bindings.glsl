@@ -86,8 +86,11 @@ GpuLight loadLight(uint i) {
 }
 
 // The medium closed object `object` encloses: its material's Beer-Lambert attenuation (.xyz) and
-// index of refraction (.w), GpuMaterial's `attenuation`. One texel, so that a medium's IOR is one
-// read in a shading round, not the object's material and then the material's texel.
-vec4 objectMedium(uint object) { return fetchVec4(objectMediumTexels, object, 0u); }
+// index of refraction (.w), GpuMaterial's `attenuation`. Its own texels, so that a medium's IOR is
+// one read in a shading round, not the object's material and then the material's texel.
+vec4 objectMedium(uint object) { return fetchVec4(objectMediumTexels, kObjectMediumTexels * object, 0u); }
+
+// The priority of that medium (MTL `priority`): where media overlap, the highest is the medium.
+int objectPriority(uint object) { return int(imageLoad(objectMediumTexels, int(kObjectMediumTexels * object + 1u)).x); }
 
 #endif

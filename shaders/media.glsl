@@ -10,10 +10,29 @@
 #include "ieee_vector_math.glsl"
 #include "optics.glsl"
 
-// IOR of the medium inside the innermost of `count` objects in `media`, or of the scene's air.
+// The place in the stack of the medium a ray inside `count` > 0 objects is in: the innermost of
+// those of the highest priority (render-model-decisions.md, "Overlapping media by priority");
+// the innermost, count - 1, where all priorities are equal. Written without loops (below).
+uint ruling(uvec4 media, uint count) {
+    if (!kMediumPriorities || count == 1u) return count - 1u;
+    uint best = 0u;
+    int highest = objectPriority(media[0]);
+    if (kMediumStackDepth > 1u && count > 1u && objectPriority(media[1]) >= highest) {
+        best = 1u;
+        highest = objectPriority(media[1]);
+    }
+    if (kMediumStackDepth > 2u && count > 2u && objectPriority(media[2]) >= highest) {
+        best = 2u;
+        highest = objectPriority(media[2]);
+    }
+    if (kMediumStackDepth > 3u && count > 3u && objectPriority(media[3]) >= highest) best = 3u;
+    return best;
+}
+
+// IOR of the medium inside `count` objects in `media`, or of the scene's air.
 float ior(uvec4 media, uint count) {
     if (!usesMaterial(kMaterialGlass) || count == 0u) return airIor();
-    return objectMedium(media[count - 1u]).w;
+    return objectMedium(media[ruling(media, count)]).w;
 }
 
 // IOR of the medium a ray is in.
@@ -22,7 +41,7 @@ float mediumIor(PendingRay r) { return ior(r.media, mediaCount(r)); }
 vec3 mediumAttenuation(PendingRay r) {
     if (!kAbsorption) return vec3(0.0);
     uint count = mediaCount(r);
-    return count == 0u ? vec3(0.0) : objectMedium(r.media[count - 1u]).xyz;
+    return count == 0u ? vec3(0.0) : objectMedium(r.media[ruling(r.media, count)]).xyz;
 }
 
 // Beer-Lambert over the stretch between the un-offset point `start` a new ray leaves from and its
@@ -97,6 +116,17 @@ bool crossGlass(inout uvec4 media, inout uint count) {
     if (touchingCount > 2u && (st.touching.z & 0x80000000u) != 0u) enterMedium(media, count, st.touching.z & 0x7FFFFFFFu);
     counters.maxMediumDepth = max(counters.maxMediumDepth, count);
     return entering;
+}
+
+// Whether a glass hit on object k's surface, with no touching surfaces, is a false hit: k's
+// medium has a lower priority than the medium the ray is in (`media`, `count`: its stack before
+// the hit), and the ray enters k, or leaves k from inside it. The ray goes on through it with the
+// updated stack, no interface, no depth spent (Schmidt and Budge, "Simple Nested Dielectrics in
+// Ray Traced Images", JGT 2002; render-model-decisions.md, "Overlapping media by priority").
+bool falseHit(uvec4 media, uint count, uint k, bool entering) {
+    if (!kMediumPriorities || count == 0u || (kTouchingProbe && st.touching.w > 0u)) return false;
+    if (!entering && innermostMedium(media, count, k) == count) return false;  // not inside k: as without priorities
+    return objectPriority(k) < objectPriority(media[ruling(media, count)]);
 }
 
 #endif

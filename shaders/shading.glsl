@@ -203,9 +203,15 @@ void scatter(GpuMaterial m) {
     uint count = mediaCount(st.ray);
     vec3 through = p;  // where a transmitted ray starts: beyond every surface of the interface
     if (usesMaterial(kMaterialGlass) && glass) {
+        bool falseSurface = falseHit(media, count, st.hit.object, ieeeDot(d, facing) < 0.0);
         bool entering = crossGlass(media, count);
         if (!entering) n1 = m.attenuation.w;
         if (!entering || (kTouchingProbe && st.touching.w > 0u)) n2 = ior(media, count);
+        if (falseSurface) {  // the medium stays the one of higher priority: the ray goes on
+            n1 = mediumIor(st.ray);
+            n2 = n1;
+            counters.falseHits += 1u;
+        }
         if (!entering) facing = -facing;
         if (!entering) n = -n;
         if (ieeeDot(n, d) >= 0.0) n = facing;  // a shading normal on the wrong side: use the true one

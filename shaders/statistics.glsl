@@ -24,9 +24,11 @@ void addSums(inout StatisticSums total, StatisticSums sums) {
     total.v2 += sums.v2;
     total.v3 += sums.v3;
     total.v4 += sums.v4;
+    total.v5 += sums.v5;
 }
 
 uint statisticAt(StatisticSums s, uint index) {
+    if (index >= 20u) return s.v5;
     uvec4 v = index < 4u ? s.v0 : (index < 8u ? s.v1 : (index < 12u ? s.v2 : (index < 16u ? s.v3 : s.v4)));
     return v[index & 3u];
 }
@@ -51,6 +53,7 @@ void addStatistics(StatisticSums sums, uvec3 maxima) {
             sums.v2 += subgroupShuffleXor(sums.v2, distance);
             sums.v3 += subgroupShuffleXor(sums.v3, distance);
             sums.v4 += subgroupShuffleXor(sums.v4, distance);
+            sums.v5 += subgroupShuffleXor(sums.v5, distance);
             maxima = max(maxima, subgroupShuffleXor(maxima, distance));
         }
         lanes = gl_SubgroupSize;
@@ -61,6 +64,7 @@ void addStatistics(StatisticSums sums, uvec3 maxima) {
         sums.v2 = subgroupAdd(sums.v2);
         sums.v3 = subgroupAdd(sums.v3);
         sums.v4 = subgroupAdd(sums.v4);
+        sums.v5 = subgroupAdd(sums.v5);
         maxima = subgroupMax(maxima);
         uvec4 activeLanes = subgroupBallot(true);
         lanes = subgroupBallotBitCount(activeLanes);

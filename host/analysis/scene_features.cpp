@@ -151,12 +151,14 @@ SceneFeatures analyseScene(const Scene& scene) {
     for (const Triangle& t : scene.triangles) f.materialModels |= 1u << std::uint32_t(scene.materials[t.material].model);
     std::set<std::uint32_t> used;
     for (const Triangle& t : scene.triangles) used.insert(t.material);
+    std::set<int> glassPriorities;
     for (std::uint32_t index : used) {
         const Material& m = scene.materials[index];
         switch (m.model) {
             case MaterialModel::Glass:
                 f.glass = f.reflection = true;
                 if (m.attenuation != glm::vec3(0.0f)) f.absorbingMedia = true;
+                glassPriorities.insert(m.priority);
                 break;
             case MaterialModel::Mirror: f.reflection = true; break;
             case MaterialModel::Phong: f.reflection = true; [[fallthrough]];
@@ -168,6 +170,7 @@ SceneFeatures analyseScene(const Scene& scene) {
         }
     }
 
+    f.mediumPriorities = glassPriorities.size() > 1;
     const std::vector<DoubleBox> boxes = glassObjectBoxes(scene);
     f.glassObjects = std::uint32_t(boxes.size());
     f.touchingDistance = kTouchingTolerance * sceneDiagonal(scene.triangles);
@@ -229,6 +232,7 @@ std::vector<std::string> SceneFeatures::describe() const {
         std::string("glass (refraction, medium stack): ") + yesNo(glass) + ", " + std::to_string(glassObjects) +
             " objects" + (openGlassObjects ? ", " + std::to_string(openGlassObjects) + " of them open or badly wound" : ""),
         std::string("absorbing media (Beer-Lambert): ") + yesNo(absorbingMedia),
+        std::string("overlapping media by priority: ") + yesNo(mediumPriorities),
         std::string("touching glass surfaces possible: ") + yesNo(touchingMediaPossible),
         std::string("glass resting on opaque surfaces possible: ") + yesNo(opaqueContactPossible),
         std::string("coincident opaque surfaces of two objects possible: ") + yesNo(coincidentOpaquePossible),
@@ -249,6 +253,7 @@ nlohmann::json toJson(const SceneFeatures& f) {
         {"glass_objects", f.glassObjects},
         {"open_glass_objects", f.openGlassObjects},
         {"absorbing_media", f.absorbingMedia},
+        {"medium_priorities", f.mediumPriorities},
         {"touching_media_possible", f.touchingMediaPossible},
         {"opaque_contact_possible", f.opaqueContactPossible},
         {"coincident_opaque_possible", f.coincidentOpaquePossible},

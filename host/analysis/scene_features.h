@@ -24,6 +24,10 @@ struct SceneFeatures {
     std::uint32_t materialModels = 0;    // bit (1 << model) for every MaterialModel a triangle uses
     bool glass = false;                  // refraction and a medium stack
     bool absorbingMedia = false;         // some glass has Tf != 0 (Beer-Lambert)
+    // Glass materials of different priorities (MTL `priority`): where their media overlap, the
+    // highest is the medium, and surfaces inside it are false hits (render-model-decisions.md,
+    // "Overlapping media by priority"). Equal priorities change nothing.
+    bool mediumPriorities = false;
     // Two triangles of different glass objects that may lie within twice the touching distance
     // of each other (analysis/glass_proximity.h): only then can a touching probe find anything, so
     // otherwise neither backend probes. Nested objects apart from each other need no probe.

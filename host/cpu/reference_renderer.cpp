@@ -325,8 +325,17 @@ private:
             else counters.inconsistentMedia += 1;
         }
         counters.maxMediumDepth = std::max<std::uint64_t>(counters.maxMediumDepth, inside.size());
-        const Real n1 = entering ? mediumIor(media) : Real(hit.material->ior);
-        const Real n2 = entering && crossings.size() == 1 ? Real(hit.material->ior) : mediumIor(inside);
+        Real n1 = entering ? mediumIor(media) : Real(hit.material->ior);
+        Real n2 = entering && crossings.size() == 1 ? Real(hit.material->ior) : mediumIor(inside);
+        // A surface of a medium of lower priority than the one the ray is in, entered or left
+        // from inside, is a false hit: no interface, the ray goes on through it (Schmidt and
+        // Budge, JGT 2002; render-model-decisions.md, "Overlapping media by priority").
+        if (crossings.size() == 1 && !media.empty() &&
+            (entering || std::find(media.begin(), media.end(), hit.object) != media.end()) &&
+            priority(hit.object) < priority(media[ruling(media)])) {
+            n1 = n2 = mediumIor(media);
+            counters.falseHits += 1;
+        }
 
         const Vec3 facing = entering ? hit.geometricNormal : -hit.geometricNormal;  // towards the incoming side
         Vec3 n = entering ? hit.shadingNormal : -hit.shadingNormal;
@@ -451,15 +460,26 @@ private:
         return glm::cross(Vec3(tv.v1) - v0, Vec3(tv.v2) - v0);
     }
 
-    // IOR of the medium a ray is in: the innermost object's, or the scene's air.
+    // The place in a non-empty stack of the medium the ray is in: the innermost of those of the
+    // highest priority; the innermost where all priorities are equal.
+    std::size_t ruling(const MediumStack& media) const {
+        std::size_t best = 0;
+        for (std::size_t i = 1; i < media.size(); ++i)
+            if (priority(media[i]) >= priority(media[best])) best = i;
+        return best;
+    }
+
+    int priority(std::uint32_t object) const { return scene_.materials[mediumMaterials_[object]].priority; }
+
+    // IOR of the medium a ray is in, or the scene's air.
     Real mediumIor(const MediumStack& media) const {
         if (media.empty()) return Real(scene_.airIor);
-        return Real(scene_.materials[mediumMaterials_[media.back()]].ior);
+        return Real(scene_.materials[mediumMaterials_[media[ruling(media)]]].ior);
     }
 
     Color mediumAttenuation(const MediumStack& media) const {
         if (media.empty()) return Color(0);
-        return Color(scene_.materials[mediumMaterials_[media.back()]].attenuation);
+        return Color(scene_.materials[mediumMaterials_[media[ruling(media)]]].attenuation);
     }
 
     const Scene& scene_;

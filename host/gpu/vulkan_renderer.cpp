@@ -32,11 +32,14 @@ std::span<const T> spanOf(const std::vector<T>& v) {
     return std::span<const T>(v.data(), v.size());
 }
 
-// One texel an object: its medium's material's `attenuation` (Tf, Ni), which bindings.glsl's
-// objectMedium() reads.
+// gpu::kObjectMediumTexels an object: its medium's material's `attenuation` (Tf, Ni) and its
+// priority, which bindings.glsl's objectMedium() and objectPriority() read.
 std::vector<glm::vec4> objectMediumTexels(const PackedTables& packed) {
     std::vector<glm::vec4> texels;
-    for (std::uint32_t material : packed.objectMaterials) texels.push_back(packed.materials[material].attenuation);
+    for (std::size_t object = 0; object < packed.objectMaterials.size(); ++object) {
+        texels.push_back(packed.materials[packed.objectMaterials[object]].attenuation);
+        texels.push_back(glm::vec4(std::bit_cast<float>(packed.objectPriorities[object]), 0.0f, 0.0f, 0.0f));
+    }
     return texels;
 }
 

@@ -63,6 +63,8 @@ PackedTables packTables(const Scene& scene) {
         for (const glm::vec3& texel : texture.texels) packed.texels.insert(packed.texels.end(), {texel.x, texel.y, texel.z});
     }
     packed.objectMaterials = objectMediumMaterials(scene);
+    for (std::uint32_t material : packed.objectMaterials)
+        packed.objectPriorities.push_back(material < scene.materials.size() ? scene.materials[material].priority : 0);
     return packed;
 }
 

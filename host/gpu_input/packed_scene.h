@@ -21,6 +21,7 @@ struct PackedTables {
     std::vector<float> texels;  // RGB, 3 floats a texel
     // The material of each object's medium (objectMediumMaterials, render_model/medium_materials.h).
     std::vector<std::uint32_t> objectMaterials;
+    std::vector<std::int32_t> objectPriorities;  // the priority of each object's medium
 };
 
 PackedTables packTables(const Scene& scene);

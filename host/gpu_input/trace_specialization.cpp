@@ -25,6 +25,7 @@ TraceSpecialization TraceSpecialization::forScene(const Scene& scene, const Scen
     s.touchingProbe = f.touchingMediaPossible;
     s.opaqueContact = f.opaqueContactPossible;
     s.coincidentOpaque = f.coincidentOpaquePossible;
+    s.mediumPriorities = f.mediumPriorities;
     s.textures = f.textures;
     s.backgroundKind = std::uint32_t(f.background);
     s.fresnelModel = std::uint32_t(scene.settings.fresnel);
@@ -52,6 +53,7 @@ TraceKernelConstants TraceSpecialization::constants() const {
     c[gpu::kConstantSingleSample] = singleSample ? 1u : 0u;
     c[gpu::kConstantOpaqueContact] = opaqueContact ? 1u : 0u;
     c[gpu::kConstantCoincidentOpaque] = coincidentOpaque ? 1u : 0u;
+    c[gpu::kConstantMediumPriorities] = mediumPriorities ? 1u : 0u;
     return c;
 }
 
@@ -82,6 +84,7 @@ std::vector<std::string> TraceSpecialization::describe() const {
         std::string("touching probe: ") + onOff(touchingProbe),
         std::string("glass on opaque surfaces: ") + onOff(opaqueContact),
         std::string("coincident opaque surfaces: ") + onOff(coincidentOpaque),
+        std::string("overlapping media by priority: ") + onOff(mediumPriorities),
         std::string("textures: ") + onOff(textures),
         "background: " + kindName(backgroundKind, backgroundKindName),
         "fresnel: " + kindName(fresnelModel, fresnelModelName),
@@ -101,6 +104,7 @@ nlohmann::json toJson(const TraceSpecialization& s) {
         {"touching_probe", s.touchingProbe},
         {"opaque_contact", s.opaqueContact},
         {"coincident_opaque", s.coincidentOpaque},
+        {"medium_priorities", s.mediumPriorities},
         {"textures", s.textures},
         {"background", kindName(s.backgroundKind, backgroundKindName)},
         {"fresnel", kindName(s.fresnelModel, fresnelModelName)},

@@ -67,6 +67,7 @@ Material materialFromMtl(const MtlEntry& entry, const std::filesystem::path& mtl
     if (entry.ks) m.specular = decodeSrgb(clamped(*entry.ks, "Ks"));
     if (entry.ns) m.shininess = clamped(*entry.ns, "Ns");
     if (entry.tf) m.attenuation = clamped(*entry.tf, "Tf");
+    if (entry.priority) m.priority = *entry.priority;
     if (entry.ni) {
         // Some exporters write Ni 0 for opaque materials; an IOR must be positive for the optics.
         if (*entry.ni > 0.0f)

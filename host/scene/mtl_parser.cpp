@@ -108,8 +108,8 @@ private:
             entries_.push_back(MtlEntry{.name = std::string(words[1]), .line = line_});
             return;
         }
-        static constexpr std::string_view kUsedKeys[] = {"Ka", "Kd",    "Ks",     "Tf",    "Ns",
-                                                         "Ni", "illum", "shader", "map_Kd"};
+        static constexpr std::string_view kUsedKeys[] = {"Ka", "Kd",    "Ks",     "Tf",     "Ns",
+                                                         "Ni", "illum", "shader", "map_Kd", "priority"};
         if (std::find(std::begin(kUsedKeys), std::end(kUsedKeys), key) == std::end(kUsedKeys)) return;
         if (entries_.empty()) {
             warn(path_.string() + ":" + std::to_string(line_) + ": " + std::string(key) + " before any newmtl ignored");
@@ -130,6 +130,8 @@ private:
             m.ni = scalar(key, words, rest);
         else if (key == "illum")
             m.illum = integer(key, words, rest);
+        else if (key == "priority")
+            m.priority = integer(key, words, rest);
         else if (key == "shader") {
             m.shader = integer(key, words, rest);
             m.shaderLine = line_;

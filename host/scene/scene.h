@@ -38,6 +38,9 @@ struct Material {
     float shininess = 1.0f;       // Ns
     float ior = 1.5f;             // Ni
     glm::vec3 attenuation{0.0f};  // Tf of a glass: Beer-Lambert mu per channel, 1 / scene unit
+    // Of a glass: where media overlap, the one of highest priority is the medium (MTL `priority`;
+    // docs/render-model-decisions.md, "Overlapping media by priority").
+    int priority = 0;
     int diffuseTexture = -1;      // index into Scene::textures, -1 for none
 };
 

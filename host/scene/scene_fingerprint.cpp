@@ -67,6 +67,7 @@ std::uint64_t sceneFingerprint(const Scene& scene) {
         d.add(m.shininess);
         d.add(m.ior);
         d.add(m.attenuation);
+        d.add(m.priority);
         d.add(m.diffuseTexture);
     }
     d.add(scene.textures.size());

@@ -20,11 +20,12 @@ VITRUM_CONST uint kConstantPendingRayCapacity = 9u;
 VITRUM_CONST uint kConstantSingleSample = 10u;
 VITRUM_CONST uint kConstantOpaqueContact = 11u;
 VITRUM_CONST uint kConstantCoincidentOpaque = 12u;
+VITRUM_CONST uint kConstantMediumPriorities = 13u;
 // The kernel's role and the device's guarantees (host/gpu/trace_pipeline.cpp).
-VITRUM_CONST uint kConstantResumable = 13u;
-VITRUM_CONST uint kConstantFullSubgroups = 14u;
-VITRUM_CONST uint kConstantPersistentSubgroups = 15u;
-VITRUM_CONST uint kTraceConstantCount = 16u;
+VITRUM_CONST uint kConstantResumable = 14u;
+VITRUM_CONST uint kConstantFullSubgroups = 15u;
+VITRUM_CONST uint kConstantPersistentSubgroups = 16u;
+VITRUM_CONST uint kTraceConstantCount = 17u;
 VITRUM_GPU_END
 
 #endif

@@ -60,6 +60,22 @@ TEST(SceneFeatures, TouchingAndNestedGlassNeedsTheProbeAndADeeperStack) {
     EXPECT_EQ(featuresOf("scenes/glass_sphere_spherical.json").background, BackgroundKind::Spherical);
 }
 
+// Priorities matter only where glass media differ in them: equal ones, or one on an opaque
+// material, leave the kernel without the priority code.
+TEST(SceneFeatures, OnlyGlassOfDifferentPrioritiesNeedsThePriorityRule) {
+    Scene scene = loadProjectScene("scenes/water_glass.json");
+    EXPECT_FALSE(analyseScene(scene).mediumPriorities);
+    EXPECT_FALSE(TraceSpecialization::forScene(scene, analyseScene(scene)).mediumPriorities);
+    for (Material& m : scene.materials) m.priority = m.model == MaterialModel::Glass ? 4 : 9;
+    EXPECT_FALSE(analyseScene(scene).mediumPriorities);
+    for (Material& m : scene.materials)
+        if (m.name == "water") m.priority = 3;
+    const SceneFeatures f = analyseScene(scene);
+    EXPECT_TRUE(f.mediumPriorities);
+    EXPECT_TRUE(TraceSpecialization::forScene(scene, f).mediumPriorities);
+    EXPECT_TRUE(TraceSpecialization::general().mediumPriorities);  // decided by the data at run time
+}
+
 TEST(SceneFeatures, GlassRestingOnAnOpaqueSurfaceNeedsTheContactCheck) {
     // A glass box on an opaque slab: standing on it, or a gap far below the touching distance
     // (1e-5 of the diagonal, here ~9e-5; the analysis looks twice as far), calls for the check;

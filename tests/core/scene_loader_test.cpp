@@ -440,6 +440,19 @@ TEST(SceneMtl, NegativeCoefficientsClampAndNonPositiveNiFallsBackWithWarnings) {
     EXPECT_EQ(good.ior, 1.33f);
 }
 
+// `priority N` (render-model-decisions.md, "Overlapping media by priority"): 0 where it is absent.
+TEST(SceneMtl, PriorityIsAnInteger) {
+    fs::path dir = tempDir();
+    write(dir / "p.mtl", "newmtl glass\nshader 4\nNi 1.5\npriority 3\nnewmtl water\nshader 4\nNi 1.33\n"
+                         "newmtl under\nshader 4\npriority -2\n");
+    write(dir / "p.obj", "mtllib p.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl glass\nf 1 2 3\nusemtl water\nf 1 3 2\n"
+                         "usemtl under\nf 1 2 3\n");
+    const Scene scene = loadScene(dir / "p.obj");
+    EXPECT_EQ(materialNamed(scene, "glass").priority, 3);
+    EXPECT_EQ(materialNamed(scene, "water").priority, 0);
+    EXPECT_EQ(materialNamed(scene, "under").priority, -2);
+}
+
 TEST(SceneMtl, KsTypoReadsAsOneWithOneWarningPerFile) {
     for (const char* file : {"box_sphere/box_sphere.mtl", "allied_avenger_6887/6887_allied_avenger.mtl"}) {
         std::vector<MtlEntry> entries = parseMtlFile(course(file));
@@ -456,10 +469,11 @@ TEST(SceneMtl, KsTypoReadsAsOneWithOneWarningPerFile) {
 TEST(SceneMtl, MalformedNumbersAreErrorsWithLine) {
     fs::path dir = tempDir();
     for (const char* line :
-         {"Kd 0.5 x 0.2", "Kd 0.5 0.5", "Kd", "Ks 1..0 1 1", "Ns nan", "Ni 1.5 2", "illum 2.5", "Tf 1 1 1 1"}) {
+         {"Kd 0.5 x 0.2", "Kd 0.5 0.5", "Kd", "Ks 1..0 1 1", "Ns nan", "Ni 1.5 2", "illum 2.5", "Tf 1 1 1 1",
+          "priority 1.5", "priority"}) {
         fs::path mtl = write(dir / "bad.mtl", std::string("newmtl a\nNs 1\n") + line + "\n");
-        std::string key = std::string(line).substr(0, 2);
-        expectInputError([&] { parseMtlFile(mtl); }, {"bad.mtl:3:", key == "il" ? "illum" : key, "expects"});
+        std::string key = std::string(line).substr(0, std::string(line).find(' '));
+        expectInputError([&] { parseMtlFile(mtl); }, {"bad.mtl:3:", key, "expects"});
     }
     expectInputError([&] { parseMtlFile(dir / "none.mtl"); }, {"none.mtl"});
 }
