@@ -50,13 +50,15 @@ bench-specialization: build
 bench-performance: drivers build
 	@./bench/install-deps
 	cmake -S . -B $(BUILD) > /dev/null
-	cmake --build $(BUILD) -j $(JOBS) --target vitrum_bench_bvh vitrum_bench_primary_rays vitrum_bench_whitted
+	cmake --build $(BUILD) -j $(JOBS) --target vitrum_bench_bvh vitrum_bench_primary_rays vitrum_bench_whitted \
+	  vitrum_bench_embree_render
 	$(BUILD)/bench/vitrum_bench_bvh $(BENCH_RUNS) > docs/performance.md.partial
 	VK_ICD_FILENAMES=$${VK_ICD_FILENAMES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json} \
 	  $(BUILD)/bench/vitrum_bench_primary_rays $(BENCH_RUNS) >> docs/performance.md.partial
 	VK_ICD_FILENAMES=$${VK_ICD_FILENAMES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json} \
 	  $(BUILD)/bench/vitrum_bench_whitted $(BENCH_RUNS) >> docs/performance.md.partial
 	echo >> docs/performance.md.partial
+	./bench/renderer-vs-embree $(BENCH_RUNS) >> docs/performance.md.partial
 	./bench/compare-drivers $(BENCH_RUNS) >> docs/performance.md.partial
 	mv docs/performance.md.partial docs/performance.md
 

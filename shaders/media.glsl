@@ -12,7 +12,8 @@
 
 // The place in the stack of the medium a ray inside `count` > 0 objects is in: the innermost of
 // those of the highest priority (render-model-decisions.md, "Overlapping media by priority");
-// the innermost, count - 1, where all priorities are equal. Written without loops (below).
+// the innermost, count - 1, where all priorities are equal. Without a loop, as the stack's
+// functions below.
 uint ruling(uvec4 media, uint count) {
     if (!kMediumPriorities || count == 1u) return count - 1u;
     uint best = 0u;
