@@ -1,6 +1,7 @@
 // `vitrum info SCENE`: what a scene holds and what rendering it would take.
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <iostream>
 #include <map>
 
@@ -33,8 +34,11 @@ int infoCommand(int argc, char** argv, int first) {
     }
     PhaseProgress phases;
     Scene scene = loadScene(argv[first], {.progress = phases.callback()});
+    // The analysis beside the BVH build, as `vitrum render` runs them (both read only the triangles).
+    std::future<SceneFeatures> analysis = std::async(std::launch::async, [&] { return analyseScene(scene); });
     Bvh bvh = buildBvh(scene.triangles, [&](double fraction) { phases.update("building the BVH", fraction); });
     phases.finish();
+    const SceneFeatures features = analysis.get();
     std::map<std::uint32_t, std::size_t> trianglesPerMaterial;
     for (const Triangle& t : scene.triangles) ++trianglesPerMaterial[t.material];
 
@@ -47,11 +51,11 @@ int infoCommand(int argc, char** argv, int first) {
         if (m.model == MaterialModel::Glass || m.model == MaterialModel::Phong) std::printf("  Ni %.3g", m.ior);
         if (m.model == MaterialModel::Glass)
             std::printf("  Tf %.3g %.3g %.3g", m.attenuation.x, m.attenuation.y, m.attenuation.z);
+        if (m.model == MaterialModel::Glass && m.priority != 0) std::printf("  priority %d", m.priority);
         if (m.diffuseTexture >= 0) std::printf("  map_Kd %s", scene.textures[m.diffuseTexture].path.filename().c_str());
         std::printf("\n");
     }
     // What the scene can need (analysis/scene_features.h).
-    SceneFeatures features = analyseScene(scene);
     std::printf("features:\n");
     for (const std::string& line : features.describe()) std::printf("  %s\n", line.c_str());
     // The kernel `vitrum render` builds for it (gpu_input/trace_specialization.h).

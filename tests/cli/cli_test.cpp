@@ -249,6 +249,18 @@ TEST_F(Cli, InfoReportsTrianglesAndBvh) {
     EXPECT_NE(r.output.find("SAH cost"), std::string::npos) << r.output;
 }
 
+// Glass of two priorities: `vitrum info` gives each material's and says the kernel has the rule.
+TEST_F(Cli, InfoReportsMediumPriorities) {
+    write("p.mtl", "newmtl glass\nshader 4\nNi 1.5\npriority 2\nnewmtl water\nshader 4\nNi 1.33\n");
+    write("p.obj", "mtllib p.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\no glass\nusemtl glass\nf 1 3 2\nf 1 2 4\n"
+                   "f 1 4 3\nf 2 3 4\no water\nusemtl water\nf 1 3 2\n");
+    CommandRun r = vitrum("info " + path("p.obj"));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("priority 2\n"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("overlapping media by priority: yes"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("overlapping media by priority: compiled in"), std::string::npos) << r.output;
+}
+
 // bubble.json with its camera moved into the air bubble, which lies in the glass block.
 TEST_F(Cli, InfoSaysWhichMediaTheCameraIsIn) {
     std::ifstream in(std::string(VITRUM_SOURCE_DIR) + "/scenes/bubble.json");
