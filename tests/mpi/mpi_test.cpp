@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -33,7 +34,21 @@ const std::string kDemo = std::string(VITRUM_SOURCE_DIR) + "/scenes/demo.json";
 // 160 x 120 in tiles of 32: 5 x 4 = 20 tiles, the last row and column of them whole.
 const std::string kRender = "render " + kDemo + " --width 150 --height 110 --tile 32";
 
-CommandRun mpirun(const std::string& ranks) { return vitrum::testing::run(kMpirun + " " + ranks); }
+// Under `make sanitize` (libasan preloaded) mpirun itself runs without it: Open MPI 4.1's mpirun
+// reads freed memory in its logging (found so, in orte_rml_oob_send_buffer_nb), which is not
+// ours to fix. The ranks, vitrum's sanitizer build, keep ASan and UBSan but not leak detection:
+// Open MPI unloads its components at MPI_Finalize, so their allocations have no module name a
+// suppression could match (docs/testing.md, "Sanitizers").
+CommandRun mpirun(const std::string& ranks) {
+    std::string environment;
+    const char* preload = std::getenv("LD_PRELOAD");
+    if (preload && std::string(preload).find("libasan") != std::string::npos) {
+        const char* asan = std::getenv("ASAN_OPTIONS");
+        environment = "env -u LD_PRELOAD ASAN_OPTIONS=" + std::string(asan ? asan : "") + (asan ? ":" : "") +
+                      "detect_leaks=0 ";
+    }
+    return vitrum::testing::run(environment + kMpirun + " " + ranks);
+}
 
 std::uint64_t tilesOf(const nlohmann::json& stats, int rank) {
     return stats["distributed"]["ranks"][rank]["tiles"].get<std::uint64_t>();
