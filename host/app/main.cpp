@@ -1,4 +1,5 @@
 // vitrum: a ray tracer for glass and other dielectrics on Vulkan compute (and its CPU reference).
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <iostream>
@@ -37,7 +38,11 @@ namespace {
 // it), so that no rank waits for one that failed (docs/distributed.md).
 int fail(vitrum::MpiJob* job, int exitCode, const std::string& message) {
     const bool shared = job && job->size() > 1;
-    std::cerr << "vitrum: " << (shared ? job->who() + ": " : "") << message << std::endl;
+    // One write: mpirun forwards each rank's output as it comes, and its own notice of the abort
+    // once landed between "vitrum: " and the rest of the line.
+    const std::string line = "vitrum: " + (shared ? job->who() + ": " : "") + message + "\n";
+    std::fwrite(line.data(), 1, line.size(), stderr);
+    std::fflush(stderr);
     if (shared) job->abort(exitCode);
     return exitCode;
 }
