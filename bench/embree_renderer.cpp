@@ -29,6 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_support.h"
+#include "embree_triangles.h"
 #include "analysis/scene_features.h"
 #include "bvh/bvh.h"
 #include "common/error.h"
@@ -111,35 +112,12 @@ Scene loadObjPlainly(const fs::path& path) {
 // identity): one triangle geometry, three vertices a triangle as the reference keeps them.
 class EmbreeIntersector final : public RayIntersector {
 public:
-    EmbreeIntersector(const std::vector<Triangle>& triangles, unsigned threads) {
-        const std::string config = "threads=" + std::to_string(threads);
-        device_ = rtcNewDevice(config.c_str());
-        if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed");
-        scene_ = rtcNewScene(device_);
-        rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);  // all()'s filter
-        RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                     3 * sizeof(float), 3 * triangles.size()));
-        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                       3 * sizeof(unsigned), triangles.size()));
-        for (std::size_t i = 0; i < triangles.size(); ++i)
-            for (int c = 0; c < 3; ++c) {
-                for (int a = 0; a < 3; ++a) vertices[9 * i + 3 * c + a] = triangles[i].position[c][a];
-                indices[3 * i + c] = unsigned(3 * i + c);
-            }
-        rtcCommitGeometry(geometry);
-        rtcAttachGeometry(scene_, geometry);
-        rtcReleaseGeometry(geometry);
-        rtcCommitScene(scene_);
-        if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) throw std::runtime_error("Embree: building the scene failed");
-    }
-    ~EmbreeIntersector() override {
-        rtcReleaseScene(scene_);
-        rtcReleaseDevice(device_);
-    }
-    EmbreeIntersector(const EmbreeIntersector&) = delete;
-    EmbreeIntersector& operator=(const EmbreeIntersector&) = delete;
+    EmbreeIntersector(const std::vector<Triangle>& triangles, unsigned threads)
+        : config_("threads=" + std::to_string(threads)),
+          triangles_(triangles.size(), [&](std::size_t i, int c) { return triangles[i].position[c]; },
+                     {.config = config_.c_str(),
+                      .quality = RTC_BUILD_QUALITY_HIGH,
+                      .flags = RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION}) {}  // all()'s filter
 
     std::optional<TriangleHit<float>> closest(const Ray<float>& r) const override {
         RTCIntersectContext context;
@@ -147,7 +125,7 @@ public:
         RTCRayHit hit;
         hit.ray = makeRay(r);
         hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene_, &context, &hit);
+        rtcIntersect1(triangles_.scene(), &context, &hit);
         if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
         return TriangleHit<float>{hit.ray.tfar, hit.hit.u, hit.hit.v, hit.hit.primID};
     }
@@ -156,7 +134,7 @@ public:
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         RTCRay ray = makeRay(r);
-        rtcOccluded1(scene_, &context, &ray);
+        rtcOccluded1(triangles_.scene(), &context, &ray);
         return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
     }
 
@@ -179,26 +157,14 @@ public:
         RTCRayHit hit;
         hit.ray = makeRay(r);
         hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene_, &collecting.context, &hit);
+        rtcIntersect1(triangles_.scene(), &collecting.context, &hit);
     }
 
 private:
-    static RTCRay makeRay(const Ray<float>& r) {
-        RTCRay ray{};
-        ray.org_x = r.origin.x;
-        ray.org_y = r.origin.y;
-        ray.org_z = r.origin.z;
-        ray.tnear = r.tMin;
-        ray.dir_x = r.direction.x;
-        ray.dir_y = r.direction.y;
-        ray.dir_z = r.direction.z;
-        ray.tfar = std::min(r.tMax, std::numeric_limits<float>::infinity());
-        ray.mask = 0xFFFFFFFFu;
-        return ray;
-    }
+    static RTCRay makeRay(const Ray<float>& r) { return bench::embreeRay(r.origin, r.direction, r.tMin, r.tMax); }
 
-    RTCDevice device_ = nullptr;
-    RTCScene scene_ = nullptr;
+    std::string config_;
+    bench::EmbreeTriangles triangles_;
 };
 
 double peakResidentBytes() {

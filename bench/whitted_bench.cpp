@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "bench_support.h"
+#include "embree_triangles.h"
 #include "ray_schedules.h"
 #include "trace_only_kernel.h"
 #include "bvh/bvh.h"
@@ -52,72 +53,32 @@ const char* const kScenes[] = {
     "scenes/diamond.json",
 };
 
-// Embree's scene: one triangle geometry, vertices in vitrum's BVH leaf order.
+// Embree's scene: one triangle geometry, vertices in vitrum's BVH leaf order, Embree's defaults.
 class EmbreeScene {
 public:
-    explicit EmbreeScene(std::span<const gpu::TriangleVertices> triangles) {
-        device_ = rtcNewDevice(nullptr);
-        if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed");
-        scene_ = rtcNewScene(device_);
-        RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                     3 * sizeof(float), 3 * triangles.size()));
-        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                       3 * sizeof(unsigned), triangles.size()));
-        for (std::size_t i = 0; i < triangles.size(); ++i) {
-            const glm::vec4* corners[3] = {&triangles[i].v0, &triangles[i].v1, &triangles[i].v2};
-            for (int c = 0; c < 3; ++c) {
-                for (int a = 0; a < 3; ++a) vertices[9 * i + 3 * c + a] = (*corners[c])[a];
-                indices[3 * i + c] = unsigned(3 * i + c);
-            }
-        }
-        rtcCommitGeometry(geometry);
-        rtcAttachGeometry(scene_, geometry);
-        rtcReleaseGeometry(geometry);
-        rtcCommitScene(scene_);
-        if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) throw std::runtime_error("Embree: building the scene failed");
-    }
-    ~EmbreeScene() {
-        rtcReleaseScene(scene_);
-        rtcReleaseDevice(device_);
-    }
-    EmbreeScene(const EmbreeScene&) = delete;
-    EmbreeScene& operator=(const EmbreeScene&) = delete;
+    explicit EmbreeScene(std::span<const gpu::TriangleVertices> triangles)
+        : triangles_(triangles.size(),
+                     [&](std::size_t i, int c) { return c == 0 ? triangles[i].v0 : c == 1 ? triangles[i].v1 : triangles[i].v2; },
+                     {}) {}
 
     // The closest hit's t (or -1), or for a shadow ray 1 when blocked, else -1.
     float trace(const TracedRay& r) const {
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         if (r.anyHit) {
-            RTCRay ray = makeRay(r);
-            rtcOccluded1(scene_, &context, &ray);
+            RTCRay ray = bench::embreeRay(r.origin, r.direction, r.tMin, r.tMax);
+            rtcOccluded1(triangles_.scene(), &context, &ray);
             return ray.tfar < 0.0f ? 1.0f : -1.0f;  // Embree sets tfar to -inf on a hit
         }
         RTCRayHit hit;
-        hit.ray = makeRay(r);
+        hit.ray = bench::embreeRay(r.origin, r.direction, r.tMin, r.tMax);
         hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene_, &context, &hit);
+        rtcIntersect1(triangles_.scene(), &context, &hit);
         return hit.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1.0f : hit.ray.tfar;
     }
 
 private:
-    static RTCRay makeRay(const TracedRay& r) {
-        RTCRay ray{};
-        ray.org_x = r.origin.x;
-        ray.org_y = r.origin.y;
-        ray.org_z = r.origin.z;
-        ray.tnear = r.tMin;
-        ray.dir_x = r.direction.x;
-        ray.dir_y = r.direction.y;
-        ray.dir_z = r.direction.z;
-        ray.tfar = r.tMax;
-        ray.mask = 0xFFFFFFFFu;
-        ray.flags = 0;
-        return ray;
-    }
-
-    RTCDevice device_ = nullptr;
-    RTCScene scene_ = nullptr;
+    bench::EmbreeTriangles triangles_;
 };
 
 // Seconds to trace every ray with Embree on `threads` threads, chunks handed out atomically.
