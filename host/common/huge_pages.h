@@ -1,6 +1,6 @@
 // Transparent huge pages for the big blocks of a big model (issue 52): with 4 KiB pages, each
-// first touch of a page is a page fault, and a 3M-triangle model took half a million of them, a
-// third of its time to the image (docs/performance.md, "Big models").
+// first touch of a page is a page fault, and a big model touches gigabytes (measured in
+// docs/gpu-design.md, "A big model to the image as fast as an Embree renderer").
 #pragma once
 
 #include <cstddef>

@@ -198,7 +198,7 @@ ObjScan scanLines(const fs::path& file, std::string_view text, std::size_t from,
 
 // The scan of a big file in parts, one a core, each from a line's start: the parts' counts and
 // statements joined in order, and the error of the first part that has one, which is the file's
-// first (issue 52: the scan of a 3M-triangle OBJ took 0.4 s of one core).
+// first (issue 52; docs/gpu-design.md, "A big model to the image as fast as an Embree renderer").
 ObjScan scanObj(const fs::path& file, std::string_view text) {
     constexpr std::size_t kBytesAPart = std::size_t(16) << 20;
     const std::size_t parts = std::clamp<std::size_t>(text.size() / kBytesAPart, 1, std::max(1u, std::thread::hardware_concurrency()));

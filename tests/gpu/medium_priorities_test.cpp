@@ -94,9 +94,10 @@ TEST(MediumPriorities, WaterCuttingIntoItsGlassRendersAsTheFittedWater) {
         EXPECT_LE(withPriorities.shareOver005, 0.005) << "rmse " << withPriorities.rmse;
         EXPECT_LE(withPriorities.meanAbsError, 2e-3) << "rmse " << withPriorities.rmse;
         // Without priorities the overlap is the wrong media: the glass wall then holds the water's
-        // IOR between the two surfaces, and the image is visibly another.
+        // IOR between the two surfaces, and the image fails the same thresholds (8.3% of the
+        // pixels over 0.05 here).
         const ImageDiff without = diffImages(gpu ? unranked.gpu : unranked.cpu, gpu ? fitted.gpu : fitted.cpu);
-        EXPECT_GT(without.meanAbsError, 3.0 * withPriorities.meanAbsError) << "rmse " << without.rmse;
+        EXPECT_GT(without.shareOver005, 0.005) << "rmse " << without.rmse;
     }
 }
 
