@@ -89,7 +89,7 @@ fuzz-deps: deps
 
 fuzz: fuzz-deps
 	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DVITRUM_FUZZ=ON
-	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_obj_mtl fuzz_scene_json fuzz_image
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_obj_mtl fuzz_scene_json fuzz_gltf fuzz_image
 	./tests/fuzz/run-fuzz $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 # The Vulkan loader unloads lavapipe and the validation layer at vkDestroyInstance, before

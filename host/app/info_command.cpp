@@ -29,7 +29,7 @@ std::string modelName(MaterialModel model) {
 int infoCommand(int argc, char** argv, int first) {
     if (wantsHelp(argc, argv, first) || argc - first != 1) {
         std::cout << "usage: vitrum info SCENE\n\nPrints the triangles, objects, materials, lights, camera and BVH "
-                     "statistics of SCENE (.json or .obj).\n";
+                     "statistics of SCENE (.json, .obj, .gltf or .glb).\n";
         return argc - first == 1 ? 0 : 1;
     }
     PhaseProgress phases;
@@ -52,6 +52,11 @@ int infoCommand(int argc, char** argv, int first) {
         if (m.model == MaterialModel::Glass)
             std::printf("  Tf %.3g %.3g %.3g", m.attenuation.x, m.attenuation.y, m.attenuation.z);
         if (m.model == MaterialModel::Glass && m.priority != 0) std::printf("  priority %d", m.priority);
+        // Linear, as the renderers read them (a glTF's factors, an MTL's colours decoded).
+        if (m.model == MaterialModel::Phong)
+            std::printf("  Kd %.3g %.3g %.3g  Ks %.3g %.3g %.3g  Ns %.4g", m.diffuse.x, m.diffuse.y, m.diffuse.z,
+                        m.specular.x, m.specular.y, m.specular.z, m.shininess);
+        if (m.model == MaterialModel::Mirror) std::printf("  Ks %.3g %.3g %.3g", m.specular.x, m.specular.y, m.specular.z);
         if (m.diffuseTexture >= 0) std::printf("  map_Kd %s", scene.textures[m.diffuseTexture].path.filename().c_str());
         std::printf("\n");
     }

@@ -189,6 +189,7 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
     auto loadStart = Clock::now();
     PhaseProgress phases;  // loading and building a big model take seconds (issue 52)
     SceneLoadOptions loadOptions{texelLimit, phases.callback()};
+    loadOptions.camera = command.camera;
     if (device)
         loadOptions.checkTriangles = [&](std::size_t triangles) {
             checkSceneFitsDevice(*device, triangles, nullptr, command.gpu);

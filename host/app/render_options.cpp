@@ -30,7 +30,7 @@ std::string renderHelp() {
     const std::string side = std::to_string(kMaxImageSide);
     return R"(usage: vitrum render SCENE -o OUT [options]
 
-Renders SCENE (a .json scene file or a bare .obj) and writes OUT: .png (8-bit sRGB), .pfm,
+Renders SCENE (a .json scene file, a bare .obj, or a glTF .gltf or .glb) and writes OUT: .png (8-bit sRGB), .pfm,
 .hdr or .exr (linear). Options override the scene's own settings. Under mpirun, the
 processes share one image, rank 0 writing it ('mpirun -np N vitrum render ...',
 docs/distributed.md).
@@ -50,6 +50,7 @@ docs/distributed.md).
   --min-weight W           skip branches whose path weight is below W in every channel (default 0)
   --fresnel MODEL          schlick (default) | exact | schlick-exp2, for glass
   --filter MODE            bilinear (default) | nearest: textures and environment maps
+  --camera NAME            a glTF scene's camera (default: its first perspective camera)
   --camera-from X,Y,Z      camera position
   --camera-at X,Y,Z        camera target
   --camera-up X,Y,Z        camera up vector
@@ -106,7 +107,8 @@ RenderCommand parseRenderCommand(int argc, char** argv, int first) {
             if (v == "bilinear") c.filter = TextureFilter::Bilinear;
             else if (v == "nearest") c.filter = TextureFilter::Nearest;
             else throw InputError("--filter must be bilinear or nearest, got \"" + v + "\"");
-        } else if (flag == "--camera-from") c.from = Arguments::toVec3(flag, args.valueOf(flag));
+        } else if (flag == "--camera") c.camera = args.valueOf(flag);
+        else if (flag == "--camera-from") c.from = Arguments::toVec3(flag, args.valueOf(flag));
         else if (flag == "--camera-at") c.at = Arguments::toVec3(flag, args.valueOf(flag));
         else if (flag == "--camera-up") c.up = Arguments::toVec3(flag, args.valueOf(flag));
         else if (flag == "--fov") {

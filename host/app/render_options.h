@@ -31,6 +31,7 @@ struct RenderCommand {
     std::optional<TextureFilter> filter;
     std::optional<glm::vec3> from, at, up, background;
     std::vector<glm::vec3> lights;
+    std::string camera;  // a glTF scene's camera by name
 };
 
 // The command's help, its ranges and defaults from the constants the parser and the scene use.

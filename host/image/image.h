@@ -32,4 +32,8 @@ void writeImage(const Image& image, const std::filesystem::path& path);
 // before decoding, for one whose header declares more pixels than `limit`.
 Image readImage(const std::filesystem::path& path, const PixelLimit& limit = {});
 
+// The same for an image file's bytes held in memory (a glTF's embedded PNG or JPEG): `name` is
+// what messages call it. PFM and OpenEXR are read from files only.
+Image decodeImage(const std::filesystem::path& name, std::vector<unsigned char> bytes, const PixelLimit& limit = {});
+
 }  // namespace vitrum

@@ -352,16 +352,22 @@ Image readImage(const fs::path& path, const PixelLimit& limit) {
     const std::string ext = lowerCaseExtension(path);
     if (ext == ".pfm") return readPfm(path, limit);
     if (ext == ".exr") return readOpenExr(path, limit);
-    // Decide by content between linear Radiance HDR and sRGB 8/16-bit images, so a misnamed
-    // .hdr is never gamma-converted by stb (and a .hdr that is not one is reported).
     FileBytes file = readFileBytes(path);
+    if (ext == ".hdr" && !stbi_is_hdr_from_memory(file.data(), file.size()))
+        throw inputError(path, 0, "cannot read image: not a Radiance HDR file");
+    return decodeImage(path, std::move(file.bytes), limit);
+}
+
+// Decides by content between linear Radiance HDR and sRGB 8/16-bit images, so a misnamed .hdr is
+// never gamma-converted by stb.
+Image decodeImage(const fs::path& name, std::vector<unsigned char> bytes, const PixelLimit& limit) {
+    if (bytes.size() > kMaxImageFileBytes) throw inputError(name, 0, "the image is too large");
+    FileBytes file{std::move(bytes)};
     removeEmptyImageDataChunks(file.bytes);
-    const bool isHdr = stbi_is_hdr_from_memory(file.data(), file.size()) != 0;
-    if (ext == ".hdr" && !isHdr) throw inputError(path, 0, "cannot read image: not a Radiance HDR file");
-    if (isBinaryPnm(file.bytes)) return readPnm(path, file.bytes, limit);
-    checkStbDeclaredSize(path, file, limit);
-    if (isHdr) return readLinearHdr(path, file);
-    return readSrgb(path, file);
+    if (isBinaryPnm(file.bytes)) return readPnm(name, file.bytes, limit);
+    checkStbDeclaredSize(name, file, limit);
+    if (stbi_is_hdr_from_memory(file.data(), file.size())) return readLinearHdr(name, file);
+    return readSrgb(name, file);
 }
 
 }  // namespace vitrum

@@ -17,6 +17,7 @@
 #include "common/input_file.h"
 #include "scene/float_range.h"
 #include "scene/json_lines.h"
+#include "scene/gltf_loader.h"
 #include "scene/obj_loader.h"
 #include "scene/scene_loader.h"
 
@@ -27,7 +28,8 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 struct ObjectSpec {
-    fs::path obj;
+    fs::path file;
+    bool gltf = false;  // a glTF file, else an OBJ file
     ObjOptions options;
 };
 
@@ -75,18 +77,29 @@ public:
         const json* cameraValue = member(root, "camera");
         if (cameraValue) scene.camera = camera(*cameraValue, "/camera");
         const json* objectList = member(root, "objects");
-        if (!objectList) fail("", "a scene needs \"objects\": a non-empty list of OBJ files");
+        if (!objectList) fail("", "a scene needs \"objects\": a non-empty list of OBJ or glTF files");
         std::vector<ObjectSpec> specs = objects(*objectList, "/objects");
 
+        const std::size_t listedLights = scene.lights.size();
         ObjLoader loader(scene, options_);
-        for (const ObjectSpec& spec : specs) loader.load(spec.obj, spec.options);
-        if (const auto problem = lightProblem(scene))
+        for (const ObjectSpec& spec : specs) {
+            // A glTF's punctual lights join the scene's; its cameras are not used (the scene's
+            // camera rules: docs/scene-format.md, "glTF in a JSON scene").
+            if (spec.gltf)
+                loadGltf(scene, spec.file, options_, {.transform = spec.options.transform});
+            else
+                loader.load(spec.file, spec.options);
+        }
+        if (const auto problem = lightProblem(scene)) {
+            if (problem->light >= listedLights) throw inputError(file_, 0, "a light of its glTF files: " + problem->message);
             fail("/lights/" + std::to_string(problem->light) + "/position", problem->message);
+        }
         if (!cameraValue) {
-            // The automatic camera comes with its own light unless the file lists lights.
+            // The automatic camera comes with its own light unless the scene has lights (listed,
+            // or its glTF files').
             std::vector<PointLight> listed = scene.lights;
             frameAutomatically(scene);
-            if (lightList) scene.lights = listed;
+            if (lightList || !listed.empty()) scene.lights = listed;
         }
         return scene;
     }
@@ -279,12 +292,18 @@ private:
         for (std::size_t i = 0; i < v.size(); ++i) {
             const std::string at = path + "/" + std::to_string(i);
             requireObject(v[i], at);
-            checkKeys(v[i], at, {"obj", "mtl", "transform"});
+            checkKeys(v[i], at, {"obj", "mtl", "gltf", "transform"});
             ObjectSpec spec;
             const json* obj = member(v[i], "obj");
-            if (!obj) fail(at, "an object needs \"obj\": the path of an OBJ file");
-            spec.obj = existingFile(*obj, at + "/obj");
-            if (const json* mtl = member(v[i], "mtl")) spec.options.mtlOverride = existingFile(*mtl, at + "/mtl");
+            const json* gltf = member(v[i], "gltf");
+            if (!obj && !gltf) fail(at, "an object needs \"obj\" or \"gltf\": the path of an OBJ or glTF file");
+            if (obj && gltf) fail(at + "/gltf", "an object has \"obj\" or \"gltf\", not both");
+            spec.gltf = gltf != nullptr;
+            spec.file = spec.gltf ? existingFile(*gltf, at + "/gltf") : existingFile(*obj, at + "/obj");
+            if (const json* mtl = member(v[i], "mtl")) {
+                if (spec.gltf) fail(at + "/mtl", "\"mtl\" belongs to OBJ files; a glTF file has its own materials");
+                spec.options.mtlOverride = existingFile(*mtl, at + "/mtl");
+            }
             if (const json* t = member(v[i], "transform")) spec.options.transform = transform(*t, at + "/transform");
             specs.push_back(std::move(spec));
         }

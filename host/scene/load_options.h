@@ -1,9 +1,10 @@
 // What loading a scene may be told: the limit on its textures of the device it will be rendered
-// on, a check of its triangle count, and where to report progress.
+// on, a check of its triangle count, where to report progress, and a glTF file's camera.
 #pragma once
 
 #include <cstddef>
 #include <functional>
+#include <string>
 
 #include "common/progress.h"
 #include "scene/texel_limit.h"
@@ -17,6 +18,9 @@ struct SceneLoadOptions {
     // it adds, before they are made (the long part of a big model's load), so that a render can
     // refuse a scene too large for its device there (by throwing). May be empty.
     std::function<void(std::size_t triangles)> checkTriangles;
+    // The glTF camera to look through, by name (`--camera NAME`); empty: the file's first
+    // perspective camera in node order.
+    std::string camera;
 };
 
 }  // namespace vitrum

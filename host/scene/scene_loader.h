@@ -1,5 +1,5 @@
-// Loading a scene: a JSON scene file (docs/scene-format.md) or a bare OBJ (automatic camera and
-// light). Throws InputError naming the file and line on bad input.
+// Loading a scene: a JSON scene file (docs/scene-format.md), a bare OBJ (automatic camera and
+// light) or a bare glTF file (its own camera and lights, else the automatic ones). Throws InputError naming the file and line on bad input.
 #pragma once
 
 #include <filesystem>
@@ -15,5 +15,8 @@ Scene loadScene(const std::filesystem::path& path, const SceneLoadOptions& optio
 
 // The camera and light a bare OBJ gets: frames the bounding box of `scene.triangles`.
 void frameAutomatically(Scene& scene);
+
+// The automatic light: white, no fall-off, above the camera by the geometry's bounding radius.
+PointLight automaticLight(const Scene& scene);
 
 }  // namespace vitrum

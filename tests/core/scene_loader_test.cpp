@@ -793,11 +793,12 @@ TEST_F(SceneJsonErrors, ObjectsAndFiles) {
     expectInputError([&] { loadScene(dir / "missing.json"); }, {"missing.json", "cannot open"});
     expectInputError([&] { loadScene(write(dir / "s.txt", "{}")); }, {"s.txt", "unknown scene format"});
     fs::create_directories(dir / "course_scene");
-    expectInputError([&] { loadScene(dir / "course_scene"); }, {"course_scene", "is a folder", "no .json or .obj"});
+    expectInputError([&] { loadScene(dir / "course_scene"); }, {"course_scene", "is a folder", "no .json, .obj, .gltf or .glb"});
     write(dir / "course_scene" / "b.OBJ", "v 0 0 0\n");
     write(dir / "course_scene" / "a.json", "{}");
     write(dir / "course_scene" / "a.mtl", "newmtl m\n");
-    expectInputError([&] { loadScene(dir / "course_scene"); }, {"course_scene", "the scenes in it: a.json b.OBJ"});
+    write(dir / "course_scene" / "c.glb", "");
+    expectInputError([&] { loadScene(dir / "course_scene"); }, {"course_scene", "the scenes in it: a.json b.OBJ c.glb"});
     expectInputError([&] { loadScene(write(dir / "bad.json", "{\n  \"objects\": [\n  }\n")); },
                      {"bad.json:3:", "invalid JSON"});
     expectInputError([&] { loadScene(write(dir / "bad.json", "[1, 2]")); }, {"bad.json", "object"});

@@ -75,6 +75,17 @@ int fuzzObjMtl(const std::uint8_t* data, std::size_t size) {
     return 0;
 }
 
+int fuzzGltf(const std::uint8_t* data, std::size_t size) {
+    const std::string_view bytes = asText(data, size);
+    const bool binary = bytes.substr(0, 4) == "glTF";
+    const fs::path file = writeFile(binary ? "fuzz.glb" : "fuzz.gltf", bytes);
+    try {
+        analyseScene(loadScene(file));
+    } catch (const InputError&) {
+    }
+    return 0;
+}
+
 int fuzzSceneJson(const std::uint8_t* data, std::size_t size) {
     static const bool triangleWritten = [] {
         writeFile("tri.obj",

@@ -18,6 +18,11 @@ namespace vitrum {
 // file as a texture).
 int fuzzObjMtl(const std::uint8_t* data, std::size_t size);
 
+// A glTF file, written as fuzz.glb when it starts with the binary container's magic "glTF", else
+// as fuzz.gltf, and loaded as a bare glTF scene (buffers and images in data URIs or in the GLB's
+// binary chunk; a URI naming fuzz.gltf or fuzz.glb reads that file).
+int fuzzGltf(const std::uint8_t* data, std::size_t size);
+
 // A JSON scene file, written as scene.json next to files that it can name: tri.obj and tri.mtl (a
 // triangle with a glass material), sky.pfm (4x3, for "spherical" and "cube_cross") and face.pfm
 // (1x1, for "cube").
@@ -40,6 +45,7 @@ struct FuzzTarget {
 inline constexpr FuzzTarget kFuzzTargets[] = {
     {"obj_mtl", fuzzObjMtl},
     {"scene_json", fuzzSceneJson},
+    {"gltf", fuzzGltf},
     {"image", fuzzImage},
     {"render_arguments", fuzzRenderArguments},
 };

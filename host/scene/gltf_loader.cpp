@@ -1,0 +1,678 @@
+#include "scene/gltf_loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include "scene/tinygltf.h"
+
+#include "common/error.h"
+#include "common/file_extension.h"
+#include "image/image.h"
+#include "image/srgb.h"
+#include "scene/mtl_material.h"
+#include "scene/quote_input.h"
+
+namespace vitrum {
+
+namespace fs = std::filesystem;
+
+glm::mat4 gltfToZUp() {
+    glm::mat4 m(0.0f);  // glm is column-major: m[column][row]
+    m[0][0] = 1.0f;     // x stays x
+    m[1][2] = 1.0f;     // y (up) becomes z
+    m[2][1] = -1.0f;    // z (towards the viewer) becomes -y
+    m[3][3] = 1.0f;
+    return m;
+}
+
+namespace {
+
+// The extensions whose meaning vitrum renders (docs/scene-format.md, "glTF 2.0"); a file that
+// requires any other is refused, one that only uses it is read without it, with a warning.
+const std::set<std::string> kReadExtensions = {"KHR_materials_transmission", "KHR_materials_volume",
+                                               "KHR_materials_ior", "KHR_materials_specular", "KHR_lights_punctual"};
+
+// A glTF vector (x, y, z) in vitrum's z-up coordinates: a swap and a negation, exact in floats,
+// so that a converted OBJ gives the OBJ's own numbers (tests/gpu/gltf_scenes_test.cpp).
+glm::vec3 zUp(float x, float y, float z) { return {x, -z, y}; }
+
+// A node's matrix in glTF's y-up coordinates conjugated into vitrum's z-up ones: the matrix that
+// acts on zUp(p) as the node's acts on p. Exact (entries are moved and negated).
+glm::dmat4 zUpMatrix(const glm::dmat4& m) {
+    const glm::dmat4 r = glm::dmat4(gltfToZUp());
+    return r * m * glm::transpose(r);
+}
+
+glm::dmat4 localMatrix(const tinygltf::Node& node) {
+    if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());  // column-major, as glm
+    glm::dmat4 m(1.0);
+    if (node.translation.size() == 3) m = glm::translate(m, glm::make_vec3(node.translation.data()));
+    if (node.rotation.size() == 4) {
+        const auto& q = node.rotation;  // glTF writes x, y, z, w
+        m = m * glm::mat4_cast(glm::normalize(glm::dquat(q[3], q[0], q[1], q[2])));
+    }
+    if (node.scale.size() == 3) m = glm::scale(m, glm::make_vec3(node.scale.data()));
+    return m;
+}
+
+std::size_t componentBytes(int type) {
+    switch (type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+        default: return 0;
+    }
+}
+
+// One component as the glTF spec reads it: floats as they are, normalized integers scaled to
+// [0, 1] or [-1, 1] (glTF 2.0, 3.11 "Animations" table of normalization), integers as integers.
+double component(const unsigned char* at, int type, bool normalized) {
+    auto load = [&](auto value) {
+        std::memcpy(&value, at, sizeof value);
+        return value;
+    };
+    switch (type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            const double v = load(std::int8_t());
+            return normalized ? std::max(v / 127.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+            const double v = load(std::uint8_t());
+            return normalized ? v / 255.0 : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            const double v = load(std::int16_t());
+            return normalized ? std::max(v / 32767.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            const double v = load(std::uint16_t());
+            return normalized ? v / 65535.0 : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return load(std::uint32_t());
+        default: return load(float());
+    }
+}
+
+// Keeps an image's encoded bytes; they are decoded when a material uses the image.
+bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+    return true;
+}
+
+std::string oneLine(std::string s) {
+    std::replace(s.begin(), s.end(), '\n', ' ');
+    s.erase(s.find_last_not_of(' ') + 1);
+    return s;
+}
+
+double numberOr(const tinygltf::Value& object, const char* key, double fallback) {
+    if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsNumber()) return fallback;
+    return object.Get(key).GetNumberAsDouble();
+}
+
+class GltfReader {
+public:
+    GltfReader(Scene& scene, fs::path file, const SceneLoadOptions& load, const GltfOptions& options)
+        : scene_(scene), file_(std::move(file)), load_(load), options_(options) {}
+
+    GltfResult read() {
+        parse();
+        std::vector<int> roots = rootNodes();
+        // Triangles first counted, so that a scene too large for the device is refused before any
+        // is made (SceneLoadOptions::checkTriangles), then made.
+        visit(roots, [&](int, const tinygltf::Node& node, const glm::dmat4&) {
+            if (node.mesh >= 0) trianglesToMake_ += meshTriangles(node.mesh);
+        });
+        if (load_.checkTriangles) load_.checkTriangles(scene_.triangles.size() + trianglesToMake_);
+        const std::size_t firstTriangle = scene_.triangles.size();
+        GltfResult result;
+        std::vector<std::pair<int, glm::dmat4>> cameras;
+        visit(roots, [&](int index, const tinygltf::Node& node, const glm::dmat4& world) {
+            if (node.mesh >= 0) addMesh(index, node, world);
+            if (node.camera >= 0) cameras.emplace_back(node.camera, world);
+            if (addLight(node, world)) ++result.lights;
+        });
+        if (scene_.triangles.size() == firstTriangle) throw inputError(file_, 0, "contains no triangles");
+        if (options_.takeCamera) result.camera = takeCamera(cameras);
+        return result;
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& message) const { throw inputError(file_, 0, message); }
+    void warnAbout(const std::string& message) const { warn(file_.string() + ": " + message); }
+
+    void parse() {
+        tinygltf::TinyGLTF parser;
+        parser.SetImageLoader(keepEncodedImage, nullptr);
+        std::string errors, warnings;
+        const bool binary = lowerCaseExtension(file_) == ".glb";
+        std::error_code ec;
+        if (!fs::is_regular_file(file_, ec)) fail(fs::exists(file_, ec) ? "not a regular file" : "no such file");
+        const bool ok = binary ? parser.LoadBinaryFromFile(&model_, &errors, &warnings, file_.string())
+                               : parser.LoadASCIIFromFile(&model_, &errors, &warnings, file_.string());
+        if (!ok || !errors.empty()) fail(oneLine(errors.empty() ? "unreadable glTF" : errors));
+        std::istringstream lines(warnings);
+        for (std::string w; std::getline(lines, w);)
+            if (!w.empty()) warnAbout(w);
+        for (const std::string& name : model_.extensionsRequired)
+            if (!kReadExtensions.count(name))
+                fail("requires the glTF extension " + name + ", which vitrum does not read");
+    }
+
+    // The scene's root nodes: the default scene's, else the first scene's, else every node that is
+    // no node's child (glTF 2.0, 3.5.1: without a scene, what to show is the application's choice).
+    std::vector<int> rootNodes() const {
+        const int nodeCount = int(model_.nodes.size());
+        auto checked = [&](const std::vector<int>& nodes) {
+            for (int n : nodes)
+                if (n < 0 || n >= nodeCount) fail("a scene names node " + std::to_string(n) + ", which does not exist");
+            return nodes;
+        };
+        if (model_.defaultScene >= int(model_.scenes.size())) fail("\"scene\" names a scene that does not exist");
+        if (model_.defaultScene >= 0) return checked(model_.scenes[std::size_t(model_.defaultScene)].nodes);
+        if (!model_.scenes.empty()) return checked(model_.scenes[0].nodes);
+        std::vector<bool> isChild(model_.nodes.size(), false);
+        for (const tinygltf::Node& node : model_.nodes)
+            for (int child : node.children)
+                if (child >= 0 && child < nodeCount) isChild[std::size_t(child)] = true;
+        std::vector<int> roots;
+        for (int n = 0; n < nodeCount; ++n)
+            if (!isChild[std::size_t(n)]) roots.push_back(n);
+        return roots;
+    }
+
+    // Depth-first over the node tree, parents before children, with each node's matrix to
+    // vitrum's world (the options' transform times the z-up chain of node matrices).
+    template <typename Visit>
+    void visit(const std::vector<int>& roots, Visit&& onNode) const {
+        std::vector<bool> onPath(model_.nodes.size(), false);
+        const glm::dmat4 world = glm::dmat4(options_.transform);
+        auto walk = [&](auto& self, int index, const glm::dmat4& parent) -> void {
+            if (index < 0 || std::size_t(index) >= model_.nodes.size())
+                fail("a node names child " + std::to_string(index) + ", which does not exist");
+            if (onPath[std::size_t(index)]) fail("node " + std::to_string(index) + " is its own ancestor");
+            onPath[std::size_t(index)] = true;
+            const tinygltf::Node& node = model_.nodes[std::size_t(index)];
+            const glm::dmat4 matrix = parent * zUpMatrix(localMatrix(node));
+            onNode(index, node, matrix);
+            for (int child : node.children) self(self, child, matrix);
+            onPath[std::size_t(index)] = false;
+        };
+        for (int root : roots) walk(walk, root, world);
+    }
+
+    const tinygltf::Accessor& accessor(int index, const std::string& what) const {
+        if (index < 0 || std::size_t(index) >= model_.accessors.size())
+            fail(what + " names accessor " + std::to_string(index) + ", which does not exist");
+        return model_.accessors[std::size_t(index)];
+    }
+
+    // An accessor's elements as doubles, `components` a element, with byte strides, normalized
+    // integers and sparse substitution (glTF 2.0, 3.6.2), every byte checked against its buffer.
+    std::vector<double> elements(int index, int components, const std::string& what) const {
+        const tinygltf::Accessor& a = accessor(index, what);
+        const std::string name = what + " (accessor " + std::to_string(index) + ")";
+        const int expectedType = components == 1 ? TINYGLTF_TYPE_SCALAR : components;
+        if (a.type != expectedType) fail(name + " has the wrong type");
+        const std::size_t size = componentBytes(a.componentType);
+        if (size == 0) fail(name + " has an unsupported component type " + std::to_string(a.componentType));
+        const std::size_t count = a.count;
+        std::vector<double> values(count * std::size_t(components), 0.0);
+        auto gather = [&](int viewIndex, std::size_t offset, std::size_t n, int type, int comps,
+                          auto&& put) {
+            if (n == 0) return;
+            if (viewIndex < 0 || std::size_t(viewIndex) >= model_.bufferViews.size())
+                fail(name + " names a buffer view that does not exist");
+            const tinygltf::BufferView& view = model_.bufferViews[std::size_t(viewIndex)];
+            if (view.buffer < 0 || std::size_t(view.buffer) >= model_.buffers.size())
+                fail(name + " uses a buffer that does not exist");
+            const std::vector<unsigned char>& buffer = model_.buffers[std::size_t(view.buffer)].data;
+            const std::size_t bytes = componentBytes(type) * std::size_t(comps);
+            const std::size_t stride = view.byteStride ? view.byteStride : bytes;
+            // Written so that no sum can overflow: the view within its buffer, then the last
+            // element within the view.
+            if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset ||
+                offset > view.byteLength || bytes > view.byteLength - offset || stride < bytes ||
+                (n - 1) > (view.byteLength - offset - bytes) / stride)
+                fail(name + " reaches beyond its buffer");
+            const unsigned char* base = buffer.data() + view.byteOffset + offset;
+            for (std::size_t i = 0; i < n; ++i) put(i, base + i * stride);
+        };
+        if (a.bufferView >= 0)
+            gather(a.bufferView, a.byteOffset, count, a.componentType, components, [&](std::size_t i, const unsigned char* at) {
+                for (int c = 0; c < components; ++c)
+                    values[i * std::size_t(components) + std::size_t(c)] = component(at + std::size_t(c) * size, a.componentType, a.normalized);
+            });
+        if (a.sparse.isSparse) {
+            const auto& s = a.sparse;
+            std::vector<std::size_t> targets(std::size_t(std::max(s.count, 0)));
+            gather(s.indices.bufferView, std::size_t(s.indices.byteOffset), targets.size(), s.indices.componentType, 1,
+                   [&](std::size_t i, const unsigned char* at) {
+                       const double t = component(at, s.indices.componentType, false);
+                       if (!(t >= 0.0 && t < double(count))) fail(name + " has a sparse index beyond its count");
+                       targets[i] = std::size_t(t);
+                   });
+            gather(s.values.bufferView, std::size_t(s.values.byteOffset), targets.size(), a.componentType, components,
+                   [&](std::size_t i, const unsigned char* at) {
+                       for (int c = 0; c < components; ++c)
+                           values[targets[i] * std::size_t(components) + std::size_t(c)] =
+                               component(at + std::size_t(c) * size, a.componentType, a.normalized);
+                   });
+        }
+        return values;
+    }
+
+    const tinygltf::Mesh& mesh(int index) const {
+        if (index < 0 || std::size_t(index) >= model_.meshes.size())
+            fail("a node names mesh " + std::to_string(index) + ", which does not exist");
+        return model_.meshes[std::size_t(index)];
+    }
+
+    std::size_t meshTriangles(int index) const {
+        std::size_t triangles = 0;
+        for (const tinygltf::Primitive& p : mesh(index).primitives) {
+            if (p.mode != TINYGLTF_MODE_TRIANGLES || !p.attributes.count("POSITION")) continue;
+            const int corners = p.indices >= 0 ? p.indices : p.attributes.at("POSITION");
+            triangles += accessor(corners, "a primitive").count / 3;
+        }
+        return triangles;
+    }
+
+    void addMesh(int nodeIndex, const tinygltf::Node& node, const glm::dmat4& world) {
+        const tinygltf::Mesh& m = mesh(node.mesh);
+        std::string name = !node.name.empty() ? node.name : !m.name.empty() ? m.name : "node" + std::to_string(nodeIndex);
+        const glm::mat4 transform(world);
+        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(transform)));
+        const bool mirrored = glm::determinant(glm::mat3(transform)) < 0.0f;  // keep the winding outward-facing
+        if (node.skin >= 0 && !warnedSkin_) {
+            warnAbout("skins are ignored: skinned meshes are rendered in their bind pose");
+            warnedSkin_ = true;
+        }
+        const auto objectIndex = std::uint32_t(scene_.objectNames.size());
+        bool anyTriangle = false;
+        for (std::size_t p = 0; p < m.primitives.size(); ++p) {
+            const tinygltf::Primitive& primitive = m.primitives[p];
+            const std::string where = "mesh " + quoteInput(m.name.empty() ? std::to_string(node.mesh) : m.name) +
+                                      ", primitive " + std::to_string(p);
+            if (primitive.mode != TINYGLTF_MODE_TRIANGLES) {
+                static const char* kModes[] = {"points", "lines", "a line loop", "a line strip", "triangles",
+                                               "a triangle strip", "a triangle fan"};
+                const bool known = primitive.mode >= 0 && primitive.mode <= 6;
+                warnAbout(where + " is " + (known ? kModes[primitive.mode] : "of an unknown mode") +
+                          ", not triangles: skipped");
+                continue;
+            }
+            if (!primitive.attributes.count("POSITION")) {
+                warnAbout(where + " has no POSITION: skipped");
+                continue;
+            }
+            if (!primitive.targets.empty() && !warnedMorph_) {
+                warnAbout("morph targets are ignored: meshes are rendered without their weights");
+                warnedMorph_ = true;
+            }
+            const std::vector<double> positions = elements(primitive.attributes.at("POSITION"), 3, where + " POSITION");
+            const std::size_t vertexCount = positions.size() / 3;
+            std::vector<double> normals, uvs;
+            if (auto n = primitive.attributes.find("NORMAL"); n != primitive.attributes.end()) {
+                normals = elements(n->second, 3, where + " NORMAL");
+                if (normals.size() != positions.size()) fail(where + " has a NORMAL for some vertices only");
+            }
+            if (auto t = primitive.attributes.find("TEXCOORD_0"); t != primitive.attributes.end()) {
+                // glTF requires VEC2; assimp 5.2 writes VEC3 with a zero third: its first two read.
+                const bool vec3 = accessor(t->second, where + " TEXCOORD_0").type == TINYGLTF_TYPE_VEC3;
+                uvs = elements(t->second, vec3 ? 3 : 2, where + " TEXCOORD_0");
+                if (vec3) {
+                    for (std::size_t i = 0; i < uvs.size() / 3; ++i) {
+                        uvs[2 * i] = uvs[3 * i];
+                        uvs[2 * i + 1] = uvs[3 * i + 1];
+                    }
+                    uvs.resize(uvs.size() / 3 * 2);
+                }
+                if (uvs.size() / 2 != vertexCount) fail(where + " has a TEXCOORD_0 for some vertices only");
+            }
+            std::vector<std::size_t> corners;
+            if (primitive.indices >= 0) {
+                const tinygltf::Accessor& a = accessor(primitive.indices, where + " indices");
+                if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                    a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                    a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                    fail(where + " has indices that are not unsigned integers");
+                const std::vector<double> indices = elements(primitive.indices, 1, where + " indices");
+                corners.reserve(indices.size());
+                for (double i : indices) {
+                    if (i >= double(vertexCount))
+                        fail(where + " uses vertex " + std::to_string(std::size_t(i)) + ", but it has " +
+                             std::to_string(vertexCount));
+                    corners.push_back(std::size_t(i));
+                }
+            } else {
+                corners.resize(vertexCount);
+                for (std::size_t i = 0; i < vertexCount; ++i) corners[i] = i;
+            }
+            if (corners.size() % 3 != 0)
+                warnAbout(where + " has " + std::to_string(corners.size()) + " corners, not a multiple of 3: the last " +
+                          std::to_string(corners.size() % 3) + " ignored");
+            const std::uint32_t material = primitive.material >= 0 ? materialIndex(primitive.material) : defaultMaterial();
+            scene_.triangles.reserve(scene_.triangles.size() + corners.size() / 3);
+            for (std::size_t k = 0; k + 2 < corners.size(); k += 3) {
+                std::size_t c[3] = {corners[k], corners[k + 1], corners[k + 2]};
+                if (mirrored) std::swap(c[1], c[2]);
+                Triangle t;
+                t.material = material;
+                t.object = objectIndex;
+                for (int i = 0; i < 3; ++i) {
+                    const double* p = &positions[3 * c[i]];
+                    t.position[i] = glm::vec3(transform * glm::vec4(zUp(float(p[0]), float(p[1]), float(p[2])), 1.0f));
+                    if (!std::isfinite(t.position[i].x) || !std::isfinite(t.position[i].y) ||
+                        !std::isfinite(t.position[i].z))
+                        fail(where + ": vertex " + std::to_string(c[i]) + " is not finite after its transform");
+                    // glTF's v runs down the image from its top row, vitrum's up from the bottom.
+                    t.uv[i] = uvs.empty() ? glm::vec2(0.0f)
+                                          : glm::vec2(float(uvs[2 * c[i]]), 1.0f - float(uvs[2 * c[i] + 1]));
+                }
+                glm::vec3 geometric = glm::cross(t.position[1] - t.position[0], t.position[2] - t.position[0]);
+                const float length = glm::length(geometric);
+                geometric = length > 0.0f && std::isfinite(length) ? geometric / length : glm::vec3(0.0f, 0.0f, 1.0f);
+                for (int i = 0; i < 3; ++i) {
+                    glm::vec3 n(0.0f);
+                    if (!normals.empty()) {
+                        const double* v = &normals[3 * c[i]];
+                        n = normalMatrix * zUp(float(v[0]), float(v[1]), float(v[2]));
+                    }
+                    const float nl = glm::length(n);
+                    t.normal[i] = nl > 0.0f && std::isfinite(nl) ? n / nl : geometric;
+                }
+                scene_.triangles.push_back(t);
+                anyTriangle = true;
+                if (load_.progress && ++trianglesMade_ % 65536 == 0)
+                    load_.progress("triangles of " + file_.filename().string(),
+                                   double(trianglesMade_) / double(std::max<std::size_t>(trianglesToMake_, 1)));
+            }
+        }
+        if (anyTriangle) scene_.objectNames.push_back(file_.filename().string() + "/" + name);
+    }
+
+    std::uint32_t defaultMaterial() {
+        if (!defaultMaterial_) {
+            defaultMaterial_ = std::uint32_t(scene_.materials.size());
+            scene_.materials.push_back(vitrum::defaultMaterial());
+        }
+        return *defaultMaterial_;
+    }
+
+    std::uint32_t materialIndex(int index) {
+        if (std::size_t(index) >= model_.materials.size())
+            fail("a primitive names material " + std::to_string(index) + ", which does not exist");
+        if (auto found = materials_.find(index); found != materials_.end()) return found->second;
+        const auto sceneIndex = std::uint32_t(scene_.materials.size());
+        scene_.materials.push_back(material(model_.materials[std::size_t(index)], index));
+        return materials_[index] = sceneIndex;
+    }
+
+    // glTF's metallic-roughness materials on the render model's (docs/scene-format.md, "glTF
+    // materials"): transmission is glass, metal a mirror, the rest the opaque dielectric.
+    Material material(const tinygltf::Material& g, int index) {
+        const std::string name = g.name.empty() ? "material" + std::to_string(index) : g.name;
+        const std::string quoted = "material " + quoteInput(name);
+        std::vector<std::string> ignored;
+        Material m;
+        m.name = name;
+        const auto& pbr = g.pbrMetallicRoughness;
+        const glm::vec3 base = pbr.baseColorFactor.size() >= 3
+                                   ? glm::vec3(glm::make_vec3(pbr.baseColorFactor.data()))
+                                   : glm::vec3(1.0f);
+        auto extension = [&](const char* key) -> const tinygltf::Value* {
+            auto found = g.extensions.find(key);
+            return found == g.extensions.end() ? nullptr : &found->second;
+        };
+        const tinygltf::Value* transmission = extension("KHR_materials_transmission");
+        const tinygltf::Value* volume = extension("KHR_materials_volume");
+        const tinygltf::Value* iorExtension = extension("KHR_materials_ior");
+        const double transmissionFactor = transmission ? numberOr(*transmission, "transmissionFactor", 0.0) : 0.0;
+        const double ior = iorExtension ? numberOr(*iorExtension, "ior", 1.5) : 1.5;
+        // KHR_materials_ior allows 0 (an infinite index) and values from 1 up; a refracting
+        // medium needs a finite one.
+        if (ior >= 1.0 && ior <= 10.0)
+            m.ior = float(ior);
+        else
+            warnAbout(quoted + " has ior " + std::to_string(ior) + "; using 1.5");
+        if (transmissionFactor >= 0.5) {
+            // Thin-walled (no volume, or thicknessFactor 0: KHR_materials_volume) is a surface
+            // with no inside; vitrum's glass is a closed mesh around a medium.
+            const double thickness = volume ? numberOr(*volume, "thicknessFactor", 0.0) : 0.0;
+            if (!(thickness > 0.0))
+                fail(quoted + " is thin-walled glass (KHR_materials_transmission without KHR_materials_volume, or "
+                              "thicknessFactor 0), which vitrum does not render: its glass is a closed mesh "
+                              "around a medium. Give the material KHR_materials_volume with a thicknessFactor > 0");
+            m.model = MaterialModel::Glass;
+            if (transmissionFactor < 1.0)
+                ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 1)");
+            if (base != glm::vec3(1.0f))
+                ignored.push_back("baseColorFactor (glass is tinted by KHR_materials_volume's attenuation only)");
+            const double distance = numberOr(*volume, "attenuationDistance", std::numeric_limits<double>::infinity());
+            if (std::isfinite(distance) && distance > 0.0) {
+                glm::dvec3 colour(1.0);
+                const tinygltf::Value& c = volume->Get("attenuationColor");
+                if (c.IsArray() && c.ArrayLen() == 3)
+                    for (int i = 0; i < 3; ++i) colour[i] = c.Get(i).IsNumber() ? c.Get(i).GetNumberAsDouble() : 1.0;
+                // mu = -ln(colour) / distance (KHR_materials_volume); a colour of 0 would be an
+                // infinite mu: the smallest normal float keeps it finite and black.
+                for (int i = 0; i < 3; ++i)
+                    m.attenuation[i] = float(-std::log(std::clamp(colour[i], double(std::numeric_limits<float>::min()), 1.0)) / distance);
+            }
+            if (pbr.baseColorTexture.index >= 0) ignored.push_back("baseColorTexture");
+        } else if (pbr.metallicFactor >= 0.5) {
+            m.model = MaterialModel::Mirror;
+            m.specular = base;
+            if (pbr.metallicFactor < 1.0) ignored.push_back("metallicFactor " + std::to_string(pbr.metallicFactor) + " (rendered as 1)");
+            if (pbr.roughnessFactor > 0.0) ignored.push_back("roughnessFactor (a metal is a perfect mirror)");
+            if (pbr.baseColorTexture.index >= 0) ignored.push_back("baseColorTexture");
+        } else if (const tinygltf::Value* specular = extension("KHR_materials_specular");
+                   specular && numberOr(*specular, "specularFactor", 1.0) == 0.0) {
+            // No specular layer at all (KHR_materials_specular): the diffuse base alone, Lambert.
+            m.model = MaterialModel::Lambert;
+            m.diffuse = base;
+            if (pbr.baseColorTexture.index >= 0) m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, quoted, ignored);
+        } else {
+            m.model = MaterialModel::Phong;
+            m.diffuse = base;
+            // Ks: the highlight's peak is the specular layer's reflectance at normal incidence,
+            // min(F0(ior) * specularColorFactor, 1) * specularFactor (KHR_materials_specular), F0
+            // against air. Ns from roughness by Walter et al. 2007 ("Microfacet Models for
+            // Refraction", eq. 30): Ns = 2 / alpha^2 - 2, alpha = roughness^2, within [1, 10000].
+            const float f0 = (m.ior - 1.0f) * (m.ior - 1.0f) / ((m.ior + 1.0f) * (m.ior + 1.0f));
+            glm::vec3 colour(1.0f);
+            float factor = 1.0f;
+            if (const tinygltf::Value* specular = extension("KHR_materials_specular")) {
+                factor = float(numberOr(*specular, "specularFactor", 1.0));
+                const tinygltf::Value& c = specular->Get("specularColorFactor");
+                if (c.IsArray() && c.ArrayLen() == 3)
+                    for (int i = 0; i < 3; ++i) colour[i] = c.Get(i).IsNumber() ? float(c.Get(i).GetNumberAsDouble()) : 1.0f;
+                if (specular->Has("specularTexture") || specular->Has("specularColorTexture"))
+                    ignored.push_back("KHR_materials_specular's textures");
+            }
+            m.specular = glm::max(glm::min(f0 * colour, glm::vec3(1.0f)) * factor, glm::vec3(0.0f));
+            const double alpha = pbr.roughnessFactor * pbr.roughnessFactor;
+            m.shininess = alpha > 0.0 ? float(std::clamp(2.0 / (alpha * alpha) - 2.0, 1.0, 10000.0)) : 10000.0f;
+            if (pbr.metallicFactor > 0.0) ignored.push_back("metallicFactor " + std::to_string(pbr.metallicFactor) + " (rendered as 0)");
+            if (transmissionFactor > 0.0) ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 0)");
+            if (pbr.baseColorTexture.index >= 0) m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, quoted, ignored);
+        }
+        if (pbr.metallicRoughnessTexture.index >= 0) ignored.push_back("metallicRoughnessTexture");
+        if (g.normalTexture.index >= 0) ignored.push_back("normalTexture");
+        if (g.occlusionTexture.index >= 0) ignored.push_back("occlusionTexture");
+        if (g.emissiveTexture.index >= 0 ||
+            (g.emissiveFactor.size() == 3 && (g.emissiveFactor[0] > 0 || g.emissiveFactor[1] > 0 || g.emissiveFactor[2] > 0)))
+            ignored.push_back("emission");
+        if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty()) ignored.push_back("alphaMode " + g.alphaMode);
+        for (const auto& [key, value] : g.extensions)
+            if (!kReadExtensions.count(key)) ignored.push_back(key);
+        if (!ignored.empty()) {
+            std::string list;
+            for (const std::string& item : ignored) list += (list.empty() ? "" : ", ") + item;
+            warnAbout(quoted + ": ignored: " + list);
+        }
+        return m;
+    }
+
+    // The render model's opaque diffuse colour is the texel alone (Kd or map_Kd): a factor other
+    // than white is multiplied into a copy of the image, one per image and factor.
+    int baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3 factor, const std::string& quoted,
+                         std::vector<std::string>& ignored) {
+        if (info.texCoord != 0) ignored.push_back("baseColorTexture's TEXCOORD_" + std::to_string(info.texCoord) + " (TEXCOORD_0 used)");
+        if (std::size_t(info.index) >= model_.textures.size()) fail(quoted + " names a texture that does not exist");
+        const int source = model_.textures[std::size_t(info.index)].source;
+        if (source < 0 || std::size_t(source) >= model_.images.size()) {
+            warnAbout(quoted + ": its texture has no image it can read; using baseColorFactor");
+            return -1;
+        }
+        const auto key = std::make_tuple(source, factor.x, factor.y, factor.z);
+        if (auto found = textures_.find(key); found != textures_.end()) return found->second;
+        const tinygltf::Image& image = model_.images[std::size_t(source)];
+        const fs::path name = image.uri.empty() || image.uri.starts_with("data:")
+                                  ? fs::path(file_.string() + ": image " + std::to_string(source))
+                                  : file_.parent_path() / uriPath(image.uri);
+        int index = -1;
+        try {
+            Image decoded = image.as_is ? decodeImage(name, image.image, load_.texelLimit.leftAfter(scene_))
+                                        : readImage(name, load_.texelLimit.leftAfter(scene_));
+            for (glm::vec3& texel : decoded.pixels) texel *= factor;
+            index = int(scene_.textures.size());
+            scene_.textures.push_back(Texture{name, int(decoded.width), int(decoded.height), std::move(decoded.pixels)});
+        } catch (const ImageTooLarge& e) {
+            fail(quoted + ": baseColorTexture " + e.what());
+        } catch (const InputError& e) {
+            warnAbout(quoted + ": texture cannot be read (" + std::string(e.what()) + "); using baseColorFactor");
+        }
+        return textures_[key] = index;
+    }
+
+    // A relative URI as a path: percent-escapes decoded (RFC 3986), '/' as separator.
+    static fs::path uriPath(const std::string& uri) {
+        std::string path;
+        for (std::size_t i = 0; i < uri.size(); ++i) {
+            if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+                std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+                path += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+                i += 2;
+            } else {
+                path += uri[i];
+            }
+        }
+        return fs::path(path);
+    }
+
+    // KHR_lights_punctual: a point light is colour times intensity with the inverse-square
+    // fall-off; a spot light is approximated by a point light; a directional light has no place
+    // in the render model's point lights and is skipped. Each with a warning.
+    bool addLight(const tinygltf::Node& node, const glm::dmat4& world) {
+        auto found = node.extensions.find("KHR_lights_punctual");
+        if (found == node.extensions.end() || !found->second.Has("light")) return false;
+        const tinygltf::Value& index = found->second.Get("light");
+        if (!index.IsNumber() || index.GetNumberAsInt() < 0 || std::size_t(index.GetNumberAsInt()) >= model_.lights.size())
+            fail("a node names a light that does not exist");
+        const tinygltf::Light& light = model_.lights[std::size_t(index.GetNumberAsInt())];
+        const std::string quoted = "light " + quoteInput(light.name.empty() ? std::to_string(index.GetNumberAsInt()) : light.name);
+        if (light.type == "directional") {
+            warnAbout(quoted + " is directional, which vitrum does not render: skipped");
+            return false;
+        }
+        if (light.type == "spot") warnAbout(quoted + " is a spot light: rendered as a point light, its cone ignored");
+        else if (light.type != "point") {
+            warnAbout(quoted + " is of the unknown type " + quoteInput(light.type) + ": skipped");
+            return false;
+        }
+        const glm::vec3 colour = light.color.size() == 3 ? glm::vec3(glm::make_vec3(light.color.data())) : glm::vec3(1.0f);
+        PointLight point;
+        point.position = glm::vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+        point.colour = glm::max(colour * float(light.intensity), glm::vec3(0.0f));
+        point.inverseSquare = true;
+        if (!std::isfinite(point.position.x + point.position.y + point.position.z) ||
+            !std::isfinite(point.colour.x + point.colour.y + point.colour.z))
+            fail(quoted + " has a position or colour that is not finite");
+        scene_.lights.push_back(point);
+        return true;
+    }
+
+    // The named camera, else the first in node order; its node looks down its local -z with +y up
+    // (glTF 2.0, 3.10.1), which the z-up matrix has already turned into +y and +z.
+    bool takeCamera(const std::vector<std::pair<int, glm::dmat4>>& cameras) {
+        auto cameraName = [&](int index) {
+            if (index < 0 || std::size_t(index) >= model_.cameras.size())
+                fail("a node names camera " + std::to_string(index) + ", which does not exist");
+            return model_.cameras[std::size_t(index)].name;
+        };
+        const std::pair<int, glm::dmat4>* chosen = nullptr;
+        if (!load_.camera.empty()) {
+            std::string names;
+            for (const auto& c : cameras) {
+                if (!chosen && cameraName(c.first) == load_.camera) chosen = &c;
+                names += (names.empty() ? "" : ", ") + quoteInput(cameraName(c.first));
+            }
+            if (!chosen)
+                fail("has no camera named " + quoteInput(load_.camera) +
+                     (names.empty() ? std::string(" (it has no camera in its scene)") : "; its cameras: " + names));
+        } else if (!cameras.empty()) {
+            chosen = &cameras.front();
+        }
+        if (!chosen) return false;
+        const tinygltf::Camera& g = model_.cameras[std::size_t(chosen->first)];
+        const std::string quoted = "camera " + quoteInput(g.name.empty() ? std::to_string(chosen->first) : g.name);
+        if (g.type != "perspective")
+            fail(quoted + " is " + (g.type.empty() ? std::string("of no type") : g.type) +
+                 ", which vitrum does not render: it renders perspective cameras (choose one with --camera NAME)");
+        const glm::dmat4& w = chosen->second;
+        Camera& c = scene_.camera;
+        c.from = glm::vec3(w * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+        const glm::dvec3 forward = glm::dmat3(w) * glm::dvec3(0.0, 1.0, 0.0), up = glm::dmat3(w) * glm::dvec3(0.0, 0.0, 1.0);
+        if (!(glm::length(forward) > 0.0) || !(glm::length(glm::cross(forward, up)) > 0.0))
+            fail(quoted + "'s node matrix collapses its view direction or its up");
+        c.at = c.from + glm::vec3(glm::normalize(forward));
+        c.up = glm::vec3(glm::normalize(up));
+        const double fovY = glm::degrees(g.perspective.yfov);
+        if (!validFovY(fovY))
+            fail(quoted + " has yfov " + std::to_string(g.perspective.yfov) + " radians; vitrum renders " + kFovYRange);
+        c.fovY = float(fovY);
+        c.width = 640;
+        c.height = 480;
+        if (g.perspective.aspectRatio > 0.0)
+            c.height = std::uint32_t(std::clamp(std::lround(640.0 / g.perspective.aspectRatio), 1l, long(kMaxImageSide)));
+        return true;
+    }
+
+    Scene& scene_;
+    fs::path file_;
+    const SceneLoadOptions& load_;
+    GltfOptions options_;
+    tinygltf::Model model_;
+    std::map<int, std::uint32_t> materials_;
+    std::map<std::tuple<int, float, float, float>, int> textures_;
+    std::optional<std::uint32_t> defaultMaterial_;
+    std::size_t trianglesToMake_ = 0, trianglesMade_ = 0;
+    bool warnedSkin_ = false, warnedMorph_ = false;
+};
+
+}  // namespace
+
+GltfResult loadGltf(Scene& scene, const fs::path& file, const SceneLoadOptions& loadOptions, const GltfOptions& options) {
+    return GltfReader(scene, file, loadOptions, options).read();
+}
+
+}  // namespace vitrum

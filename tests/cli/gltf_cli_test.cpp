@@ -1,0 +1,101 @@
+// glTF 2.0 files that another program wrote, through the command line: Debian's assimp
+// (assimp-utils) exports course meshes, and `vitrum render` and `vitrum info` take the files as
+// scenes of their own (docs/scene-format.md, "glTF 2.0"), framed automatically.
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "cli_support.h"
+#include "image/image.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using vitrum::testing::CommandRun;
+using vitrum::testing::run;
+using vitrum::testing::vitrum;
+using GltfCli = vitrum::testing::CliTest;
+
+// The number in `vitrum info`'s "triangles: N in M objects", or -1 without one.
+long long trianglesIn(const std::string& info) {
+    std::smatch match;
+    if (!std::regex_search(info, match, std::regex("triangles: ([0-9]+)"))) return -1;
+    return std::stoll(match[1]);
+}
+
+// assimp writes what its OBJ importer read: the course's z-up data as glTF's y-up (the meshes lie
+// on their side, which automatic framing does not mind), Kd as baseColorFactor, its own extensions
+// (KHR_materials_pbrSpecularGlossiness, FB_ngon_encoding) as used, not required, and
+// three-component TEXCOORD_0 where the OBJ's vt lines have three numbers.
+TEST_F(GltfCli, AssimpExportedCourseMeshesLoadFrameAndRender) {
+    // A failure, not a skip, without assimp: CI installs it, and a skip would hide that it did not.
+    const CommandRun version = run("assimp version");
+    ASSERT_EQ(version.exitCode, 0) << "assimp (Debian's assimp-utils) is needed: " << version.output;
+    for (const std::string mesh : {"geosphere", "cornell_box2"}) {
+        SCOPED_TRACE(mesh);
+        const std::string obj = std::string(VITRUM_SHARED_DIR) + "/scenes/course/" + mesh + "/" + mesh + ".obj";
+        const std::string gltf = path(mesh + ".gltf");
+        const std::string png = path(mesh + ".png");
+        // gltf2 by name: assimp's "gltf" format is glTF 1.0.
+        const CommandRun exported = run("assimp export " + obj + " " + gltf + " -fgltf2");
+        ASSERT_EQ(exported.exitCode, 0) << exported.output;
+        ASSERT_TRUE(fs::exists(gltf)) << exported.output;
+
+        const CommandRun render = vitrum("render " + gltf + " --width 64 --height 48 -o " + png);
+        ASSERT_EQ(render.exitCode, 0) << render.output;
+        const vitrum::Image image = vitrum::readImage(png);
+        ASSERT_EQ(image.width, 64u);
+        ASSERT_EQ(image.height, 48u);
+        // The automatic camera sees the mesh, lit by the automatic light: not one colour.
+        EXPECT_TRUE(std::any_of(image.pixels.begin(), image.pixels.end(),
+                                [&](const glm::vec3& p) { return p != image.pixels.front(); }));
+
+        const CommandRun gltfInfo = vitrum("info " + gltf);
+        ASSERT_EQ(gltfInfo.exitCode, 0) << gltfInfo.output;
+        const CommandRun objInfo = vitrum("info " + obj);
+        ASSERT_EQ(objInfo.exitCode, 0) << objInfo.output;
+        EXPECT_GT(trianglesIn(objInfo.output), 0) << objInfo.output;
+        EXPECT_EQ(trianglesIn(gltfInfo.output), trianglesIn(objInfo.output)) << gltfInfo.output;
+    }
+}
+
+// `--camera NAME` picks a glTF file's camera; a name the file lacks is refused with the names it
+// has, and the option is refused for scenes that are no glTF file.
+TEST_F(GltfCli, CameraOptionPicksTheNamedCamera) {
+    // One triangle (three glTF vertices: the origin, +x and +y) seen by two cameras.
+    const std::string gltf = write("two_cameras.gltf", R"({
+  "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],
+  "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+  "bufferViews": [{"buffer": 0, "byteLength": 36}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  "cameras": [{"name": "front", "type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}},
+              {"name": "wide", "type": "perspective", "perspective": {"yfov": 1.2, "aspectRatio": 2.0, "znear": 0.1}}],
+  "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0.3, 0.3, 3]}, {"camera": 1, "translation": [0.3, 0.3, 2]}]
+})");
+    const CommandRun front = vitrum("render " + gltf + " --camera front -o " + path("front.png"));
+    ASSERT_EQ(front.exitCode, 0) << front.output;
+    EXPECT_NE(front.output.find("image: 640x480"), std::string::npos) << front.output;
+    // The second camera's aspect ratio 2 gives its image 640 x 320.
+    const CommandRun wide = vitrum("render " + gltf + " --camera wide --width 64 -o " + path("wide.png"));
+    ASSERT_EQ(wide.exitCode, 0) << wide.output;
+    EXPECT_NE(wide.output.find("image: 64x320"), std::string::npos) << wide.output;
+
+    const CommandRun missing = vitrum("render " + gltf + " --camera top -o " + path("top.png"));
+    EXPECT_EQ(missing.exitCode, 1);
+    EXPECT_NE(missing.output.find("has no camera named \"top\"; its cameras: \"front\", \"wide\""), std::string::npos)
+        << missing.output;
+    EXPECT_FALSE(fs::exists(path("top.png")));
+
+    const std::string obj = write("triangle.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const CommandRun notGltf = vitrum("render " + obj + " --camera front -o " + path("obj.png"));
+    EXPECT_EQ(notGltf.exitCode, 1);
+    EXPECT_NE(notGltf.output.find("--camera picks a camera of a glTF file"), std::string::npos) << notGltf.output;
+}
+
+}  // namespace

@@ -1,0 +1,507 @@
+// glTF 2.0 input (docs/scene-format.md, "glTF 2.0"): files written here byte by byte, each
+// checked against what the glTF 2.0 specification and its KHR extensions say they mean.
+#include "scene/gltf_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "analysis/scene_features.h"
+#include "common/error.h"
+#include "image/image.h"
+#include "image/srgb.h"
+#include "scene/scene_loader.h"
+#include "../support/temporary_folder_test.h"
+
+namespace vitrum {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using testing::TemporaryFolderTest;
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+    static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (std::size_t i = 0; i < bytes.size(); i += 3) {
+        const unsigned v = unsigned(bytes[i]) << 16 | (i + 1 < bytes.size() ? unsigned(bytes[i + 1]) << 8 : 0) |
+                           (i + 2 < bytes.size() ? bytes[i + 2] : 0);
+        for (int k = 0; k < 4; ++k)
+            out += std::size_t(k) <= std::min<std::size_t>(bytes.size() - i, 3) ? kDigits[(v >> (18 - 6 * k)) & 63] : '=';
+    }
+    return out;
+}
+
+// A glTF document under construction: data appended to one buffer, accessors over it.
+class GltfBuilder {
+public:
+    GltfBuilder() {
+        doc_ = {{"asset", {{"version", "2.0"}}}, {"scene", 0}, {"scenes", json::array({json{{"nodes", json::array()}}})}};
+    }
+
+    template <typename T>
+    int accessor(const std::vector<T>& values, int componentType, const std::string& type, std::size_t count) {
+        while (bin_.size() % 4) bin_.push_back(0);
+        const std::size_t offset = bin_.size();
+        bin_.resize(offset + values.size() * sizeof(T));
+        std::memcpy(bin_.data() + offset, values.data(), values.size() * sizeof(T));
+        doc_["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", values.size() * sizeof(T)}});
+        doc_["accessors"].push_back({{"bufferView", doc_["bufferViews"].size() - 1},
+                                     {"componentType", componentType},
+                                     {"count", count},
+                                     {"type", type}});
+        return int(doc_["accessors"].size() - 1);
+    }
+    int positions(const std::vector<float>& xyz) { return accessor(xyz, 5126, "VEC3", xyz.size() / 3); }
+
+    // A mesh of one primitive; returns its index.
+    int mesh(json primitive) {
+        doc_["meshes"].push_back({{"primitives", json::array({std::move(primitive)})}});
+        return int(doc_["meshes"].size() - 1);
+    }
+    int node(json node, bool root = true) {
+        doc_["nodes"].push_back(std::move(node));
+        const int index = int(doc_["nodes"].size() - 1);
+        if (root) doc_["scenes"][0]["nodes"].push_back(index);
+        return index;
+    }
+    int material(json material) {
+        doc_["materials"].push_back(std::move(material));
+        return int(doc_["materials"].size() - 1);
+    }
+    json& doc() { return doc_; }
+
+    fs::path write(const fs::path& file) {
+        json doc = doc_;
+        if (!bin_.empty())
+            doc["buffers"] = json::array({{{"byteLength", bin_.size()},
+                                           {"uri", "data:application/octet-stream;base64," + base64(bin_)}}});
+        std::ofstream(file) << doc.dump(1);
+        return file;
+    }
+    // The binary container (glTF 2.0, 4.4 "GLB File Format Specification").
+    fs::path writeGlb(const fs::path& file) {
+        json doc = doc_;
+        doc["buffers"] = json::array({{{"byteLength", bin_.size()}}});
+        std::string text = doc.dump();
+        while (text.size() % 4) text += ' ';
+        std::vector<unsigned char> bin = bin_;
+        while (bin.size() % 4) bin.push_back(0);
+        std::ofstream out(file, std::ios::binary);
+        auto u32 = [&](std::uint32_t v) { out.write(reinterpret_cast<const char*>(&v), 4); };
+        u32(0x46546C67);  // "glTF"
+        u32(2);
+        u32(std::uint32_t(12 + 8 + text.size() + 8 + bin.size()));
+        u32(std::uint32_t(text.size()));
+        u32(0x4E4F534A);  // "JSON"
+        out.write(text.data(), std::streamsize(text.size()));
+        u32(std::uint32_t(bin.size()));
+        u32(0x004E4942);  // "BIN"
+        out.write(reinterpret_cast<const char*>(bin.data()), std::streamsize(bin.size()));
+        return file;
+    }
+
+private:
+    json doc_;
+    std::vector<unsigned char> bin_;
+};
+
+// One triangle in glTF coordinates, counter-clockwise seen from +z (glTF's viewer side).
+const std::vector<float> kTriangle = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+
+Scene load(const fs::path& file, const std::string& camera = "") {
+    SceneLoadOptions options;
+    options.camera = camera;
+    return loadScene(file, options);
+}
+
+void expectNear(glm::vec3 a, glm::vec3 b, float tolerance = 1e-6f) {
+    EXPECT_NEAR(a.x, b.x, tolerance);
+    EXPECT_NEAR(a.y, b.y, tolerance);
+    EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+class GltfLoader : public TemporaryFolderTest {};
+
+// +Y up becomes +Z up: (x, y, z) is (x, -z, y); the node's TRS is T * R * S (glTF 2.0, 3.5.3),
+// under its parent's matrix (column-major).
+TEST_F(GltfLoader, YUpBecomesZUpAndNodeTransformsCompose) {
+    GltfBuilder b;
+    const int mesh = b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}});
+    // The child: scale 2, a quarter turn about +y (x goes to -z), then up by 3 along glTF's y.
+    const double s = std::sqrt(0.5);
+    const int child = b.node({{"mesh", mesh}, {"scale", {2, 2, 2}}, {"rotation", {0, s, 0, s}}, {"translation", {0, 3, 0}}},
+                             false);
+    // The parent: a translation by (10, 0, 0) written as a matrix.
+    b.node({{"children", {child}}, {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 10, 0, 0, 1}}});
+    Scene scene = load(b.write(dir_ / "tree.gltf"));
+    ASSERT_EQ(scene.triangles.size(), 1u);
+    // glTF: (0,0,0) -> (10, 3, 0); (1,0,0) -> scaled (2,0,0), turned (0,0,-2) -> (10, 3, -2);
+    // (0,1,0) -> (0,2,0) -> (10, 5, 0). In vitrum's z-up: (x, -z, y).
+    const Triangle& t = scene.triangles[0];
+    expectNear(t.position[0], {10, 0, 3}, 1e-5f);
+    expectNear(t.position[1], {10, 2, 3}, 1e-5f);
+    expectNear(t.position[2], {10, 0, 5}, 1e-5f);
+    // No NORMAL: the geometric normal, the winding kept (the rotation keeps the handedness).
+    const glm::vec3 n = glm::normalize(glm::cross(t.position[1] - t.position[0], t.position[2] - t.position[0]));
+    expectNear(t.normal[0], n);
+    EXPECT_EQ(scene.objectNames, std::vector<std::string>{"tree.gltf/node0"});
+}
+
+// A node with a negative determinant (a mirror) keeps its triangles' outward winding, as OBJ
+// transforms do (docs/scene-format.md).
+TEST_F(GltfLoader, MirroringNodeKeepsTheWindingOutward) {
+    GltfBuilder b;
+    const int mesh = b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}});
+    b.node({{"mesh", mesh}});
+    b.node({{"mesh", mesh}, {"scale", {-1, 1, 1}}});
+    Scene scene = load(b.write(dir_ / "mirror.gltf"));
+    ASSERT_EQ(scene.triangles.size(), 2u);
+    auto normal = [](const Triangle& t) {
+        return glm::normalize(glm::cross(t.position[1] - t.position[0], t.position[2] - t.position[0]));
+    };
+    // The plain triangle faces glTF's +z, vitrum's -y; mirrored in x it still faces -y.
+    expectNear(normal(scene.triangles[0]), {0, -1, 0});
+    expectNear(normal(scene.triangles[1]), {0, -1, 0});
+    EXPECT_EQ(scene.objectNames.size(), 2u);  // each mesh instance is an object
+}
+
+// Every index component type the spec allows (unsigned byte, short, int) and no indices at all
+// give the same triangles.
+TEST_F(GltfLoader, IndexTypesAndNonIndexedGiveTheSameTriangles) {
+    const std::vector<float> quad = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    const std::vector<int> corners = {0, 1, 2, 0, 2, 3};
+    std::vector<float> unrolled;
+    for (int c : corners) unrolled.insert(unrolled.end(), quad.begin() + 3 * c, quad.begin() + 3 * c + 3);
+    GltfBuilder b;
+    const int vertices = b.positions(quad);
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", vertices}}},
+                              {"indices", b.accessor(std::vector<std::uint8_t>(corners.begin(), corners.end()), 5121, "SCALAR", 6)}})}});
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", vertices}}},
+                              {"indices", b.accessor(std::vector<std::uint16_t>(corners.begin(), corners.end()), 5123, "SCALAR", 6)}})}});
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", vertices}}},
+                              {"indices", b.accessor(std::vector<std::uint32_t>(corners.begin(), corners.end()), 5125, "SCALAR", 6)}})}});
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(unrolled)}}}})}});
+    Scene scene = load(b.write(dir_ / "indices.gltf"));
+    ASSERT_EQ(scene.triangles.size(), 8u);
+    for (std::size_t i = 2; i < 8; ++i)
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(scene.triangles[i].position[k], scene.triangles[i % 2].position[k]);
+}
+
+// A cube as exporters write it: 24 vertices, split at the edges for their normals. The medium's
+// closed-mesh check works on positions, so the cube is closed glass.
+TEST_F(GltfLoader, CubeSplitAtItsNormalSeamsIsClosedGlass) {
+    std::vector<float> positions, normals;
+    std::vector<std::uint16_t> indices;
+    for (int axis = 0; axis < 3; ++axis) {
+        for (int side = -1; side <= 1; side += 2) {
+            glm::vec3 n(0.0f);
+            n[axis] = float(side);
+            const glm::vec3 u = glm::vec3(n.y, n.z, n.x), v = glm::cross(n, u);
+            const auto first = std::uint16_t(positions.size() / 3);
+            for (const auto& [a, c] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+                const glm::vec3 p = n + float(a) * u + float(c) * v;
+                positions.insert(positions.end(), {p.x, p.y, p.z});
+                normals.insert(normals.end(), {n.x, n.y, n.z});
+            }
+            for (int k : {0, 1, 2, 0, 2, 3}) indices.push_back(std::uint16_t(first + k));
+        }
+    }
+    GltfBuilder b;
+    const int glass = b.material({{"extensions",
+                                   {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                                    {"KHR_materials_volume", {{"thicknessFactor", 2.0}}}}}});
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(positions)},
+                                             {"NORMAL", b.accessor(normals, 5126, "VEC3", normals.size() / 3)}}},
+                              {"indices", b.accessor(indices, 5123, "SCALAR", indices.size())},
+                              {"material", glass}})}});
+    Scene scene = load(b.write(dir_ / "cube.gltf"));
+    ASSERT_EQ(scene.triangles.size(), 12u);
+    ASSERT_EQ(scene.materials[scene.triangles[0].material].model, MaterialModel::Glass);
+    EXPECT_TRUE(openGlassObjects(scene).empty());
+    // Each face's normals are its own, turned into z-up and pointing out of the cube.
+    for (const Triangle& t : scene.triangles) {
+        const glm::vec3 centre = (t.position[0] + t.position[1] + t.position[2]) / 3.0f;
+        EXPECT_GT(glm::dot(t.normal[0], centre), 0.0f);
+    }
+}
+
+// glTF's PBR materials on the render model's (docs/scene-format.md, "glTF materials").
+TEST_F(GltfLoader, MaterialsMapOntoTheRenderModel) {
+    GltfBuilder b;
+    const int positions = b.positions(kTriangle);
+    auto instance = [&](json material) {
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", positions}}}, {"material", b.material(std::move(material))}})}});
+    };
+    instance({{"name", "water"},
+              {"extensions",
+               {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                {"KHR_materials_ior", {{"ior", 1.33}}},
+                {"KHR_materials_volume",
+                 {{"thicknessFactor", 1.0}, {"attenuationDistance", 2.0}, {"attenuationColor", {0.5, 1.0, 0.25}}}}}}});
+    instance({{"name", "chrome"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.9, 0.8, 0.7, 1}}, {"metallicFactor", 1.0}, {"roughnessFactor", 0.0}}}});
+    instance({{"name", "plastic"},
+              {"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.4, 0.6, 1}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.5}}}});
+    instance({{"name", "default-rough"}});  // the spec's defaults: metallic 1, roughness 1
+    instance({{"name", "tinted"},
+              {"pbrMetallicRoughness", {{"metallicFactor", 0.0}}},
+              {"extensions", {{"KHR_materials_specular", {{"specularFactor", 0.5}, {"specularColorFactor", {2.0, 1.0, 30.0}}}}}}});
+    instance({{"name", "matte"},
+              {"pbrMetallicRoughness", {{"metallicFactor", 0.0}}},
+              {"extensions", {{"KHR_materials_specular", {{"specularFactor", 0.0}}}}}});
+    const int before = warningCount();
+    Scene scene = load(b.write(dir_ / "materials.gltf"));
+    ASSERT_EQ(scene.materials.size(), 6u);
+    const Material& water = scene.materials[0];
+    EXPECT_EQ(water.model, MaterialModel::Glass);
+    EXPECT_FLOAT_EQ(water.ior, 1.33f);
+    // mu = -ln(attenuationColor) / attenuationDistance (KHR_materials_volume).
+    EXPECT_NEAR(water.attenuation.x, std::log(2.0) / 2.0, 1e-7);
+    EXPECT_EQ(water.attenuation.y, 0.0f);
+    EXPECT_NEAR(water.attenuation.z, std::log(4.0) / 2.0, 1e-7);
+    const Material& chrome = scene.materials[1];
+    EXPECT_EQ(chrome.model, MaterialModel::Mirror);
+    expectNear(chrome.specular, {0.9f, 0.8f, 0.7f});
+    const Material& plastic = scene.materials[2];
+    EXPECT_EQ(plastic.model, MaterialModel::Phong);
+    expectNear(plastic.diffuse, {0.2f, 0.4f, 0.6f});  // factors are linear already
+    expectNear(plastic.specular, glm::vec3(0.04f));   // ((1.5 - 1) / (1.5 + 1))^2
+    EXPECT_FLOAT_EQ(plastic.shininess, 30.0f);        // 2 / alpha^2 - 2, alpha = 0.5^2
+    EXPECT_FLOAT_EQ(plastic.ior, 1.5f);
+    // The default material is a rough metal: a mirror, its roughness named in a warning.
+    EXPECT_EQ(scene.materials[3].model, MaterialModel::Mirror);
+    EXPECT_EQ(warningCount(), before + 1);
+    // KHR_materials_specular: Ks = min(F0 * specularColorFactor, 1) * specularFactor; no specular
+    // layer at all is Lambert.
+    EXPECT_EQ(scene.materials[4].model, MaterialModel::Phong);
+    expectNear(scene.materials[4].specular, {0.04f, 0.02f, 0.5f});
+    EXPECT_FLOAT_EQ(scene.materials[4].shininess, 1.0f);  // roughness 1 by default
+    EXPECT_EQ(scene.materials[5].model, MaterialModel::Lambert);
+}
+
+// A base colour factor multiplies the base colour texture (glTF 2.0, 3.9.2); the render model's
+// diffuse is one texel, so the product is made once per image and factor.
+TEST_F(GltfLoader, BaseColourFactorMultipliesItsEmbeddedTexture) {
+    Image image(2, 1);
+    image.pixels = {glm::vec3(srgbToLinear(128.0f / 255.0f)), glm::vec3(1.0f)};
+    writeImage(image, dir_ / "texture.png");
+    std::ifstream file(dir_ / "texture.png", std::ios::binary);
+    const std::vector<unsigned char> png{std::istreambuf_iterator<char>(file), {}};
+    GltfBuilder b;
+    b.doc()["images"] = json::array({{{"uri", "data:image/png;base64," + base64(png)}}});
+    b.doc()["textures"] = json::array({{{"source", 0}}});
+    const int uvs = b.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, 5126, "VEC2", 3);
+    const int positions = b.positions(kTriangle);
+    for (double red : {1.0, 0.5}) {
+        const int material = b.material(
+            {{"pbrMetallicRoughness",
+              {{"baseColorFactor", {red, 1, 1, 1}}, {"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.0}}}});
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", positions}, {"TEXCOORD_0", uvs}}}, {"material", material}})}});
+    }
+    Scene scene = load(b.write(dir_ / "textured.gltf"));
+    ASSERT_EQ(scene.textures.size(), 2u);
+    const Texture& plain = scene.textures[size_t(scene.materials[0].diffuseTexture)];
+    const Texture& reddish = scene.textures[size_t(scene.materials[1].diffuseTexture)];
+    EXPECT_FLOAT_EQ(plain.texels[1].x, 1.0f);
+    EXPECT_FLOAT_EQ(reddish.texels[1].x, 0.5f);
+    EXPECT_FLOAT_EQ(reddish.texels[1].y, 1.0f);
+    EXPECT_FLOAT_EQ(reddish.texels[0].x, plain.texels[0].x * 0.5f);
+    // glTF's v runs down from the image's top row; vitrum's up from the bottom (render model).
+    EXPECT_EQ(scene.triangles[0].uv[0], glm::vec2(0, 1));
+    EXPECT_EQ(scene.triangles[0].uv[2], glm::vec2(0, 0));
+}
+
+// Thin-walled transmission has no inside (KHR_materials_volume: no extension, or thicknessFactor
+// 0): it is refused, never rendered as a solid.
+TEST_F(GltfLoader, ThinWalledGlassIsRefused) {
+    for (json extensions : {json{{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}},
+                            json{{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                                 {"KHR_materials_volume", {{"thicknessFactor", 0.0}}}}}) {
+        GltfBuilder b;
+        const int glass = b.material({{"name", "pane"}, {"extensions", extensions}});
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}, {"material", glass}})}});
+        const fs::path file = b.write(dir_ / "thin.gltf");
+        try {
+            load(file);
+            ADD_FAILURE() << "thin-walled glass was loaded";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("material \"pane\" is thin-walled glass"), std::string::npos) << e.what();
+        }
+    }
+}
+
+// The first perspective camera in node order, or the one named; its node looks down its -z with
+// +y up (glTF 2.0, 3.10.1); yfov in radians; the aspect ratio gives the image's height.
+TEST_F(GltfLoader, CamerasComeFromTheirNodes) {
+    GltfBuilder b;
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}})}});
+    b.doc()["cameras"] = json::array({{{"name", "front"}, {"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"aspectRatio", 2.0}, {"znear", 0.1}}}},
+                                      {{"name", "top"}, {"type", "perspective"}, {"perspective", {{"yfov", 1.0}, {"znear", 0.1}}}},
+                                      {{"name", "plan"}, {"type", "orthographic"}, {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"zfar", 10}, {"znear", 0.1}}}}});
+    b.node({{"camera", 0}, {"translation", {0, 0, 5}}});
+    const double s = std::sqrt(0.5);  // a quarter turn about x: looking down glTF's -y
+    b.node({{"camera", 1}, {"translation", {0, 5, 0}}, {"rotation", {-s, 0, 0, s}}});
+    b.node({{"camera", 2}});
+    const fs::path file = b.write(dir_ / "cameras.gltf");
+
+    Scene front = load(file);
+    expectNear(front.camera.from, {0, -5, 0});  // glTF +z towards the viewer is vitrum's -y
+    expectNear(glm::normalize(front.camera.at - front.camera.from), {0, 1, 0});
+    expectNear(front.camera.up, {0, 0, 1});
+    EXPECT_NEAR(front.camera.fovY, glm::degrees(0.5f), 1e-4f);
+    EXPECT_EQ(front.camera.width, 640u);
+    EXPECT_EQ(front.camera.height, 320u);
+    ASSERT_EQ(front.lights.size(), 1u);  // no lights in the file: the automatic one
+
+    Scene top = load(file, "top");
+    expectNear(top.camera.from, {0, 0, 5});
+    expectNear(glm::normalize(top.camera.at - top.camera.from), {0, 0, -1});
+    expectNear(top.camera.up, {0, 1, 0});
+    EXPECT_EQ(top.camera.height, 480u);
+
+    for (const auto& [name, expected] : {std::pair{"plan", "camera \"plan\" is orthographic"},
+                                         std::pair{"side", "has no camera named \"side\"; its cameras: \"front\", \"top\", \"plan\""}}) {
+        try {
+            load(file, name);
+            ADD_FAILURE() << name;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+        }
+    }
+}
+
+// KHR_lights_punctual: a point light is colour times intensity with the inverse-square fall-off;
+// a spot light becomes a point light and a directional light is skipped, each with a warning.
+TEST_F(GltfLoader, PunctualLightsBecomePointLights) {
+    GltfBuilder b;
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}})}});
+    b.doc()["extensionsUsed"] = {"KHR_lights_punctual"};
+    b.doc()["extensions"] = {{"KHR_lights_punctual",
+                              {{"lights", {{{"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 8.0}},
+                                           {{"type", "spot"}, {"intensity", 2.0}, {"spot", {{"outerConeAngle", 0.5}}}},
+                                           {{"type", "directional"}}}}}}};
+    for (int light = 0; light < 3; ++light)
+        b.node({{"translation", {1, 2, 3}}, {"extensions", {{"KHR_lights_punctual", {{"light", light}}}}}});
+    const int before = warningCount();
+    Scene scene = load(b.write(dir_ / "lights.gltf"));
+    EXPECT_EQ(warningCount(), before + 2);
+    ASSERT_EQ(scene.lights.size(), 2u);
+    expectNear(scene.lights[0].position, {1, -3, 2});
+    expectNear(scene.lights[0].colour, {8, 4, 2});
+    EXPECT_TRUE(scene.lights[0].inverseSquare);
+    expectNear(scene.lights[1].colour, {2, 2, 2});
+}
+
+// Primitives that are not triangles are skipped with one warning each; their mesh's triangles stay.
+TEST_F(GltfLoader, PrimitivesOtherThanTrianglesAreSkipped) {
+    GltfBuilder b;
+    const int positions = b.positions(kTriangle);
+    b.doc()["meshes"].push_back({{"primitives", {{{"attributes", {{"POSITION", positions}}}, {"mode", 1}},
+                                                 {{"attributes", {{"POSITION", positions}}}},
+                                                 {{"attributes", {{"POSITION", positions}}}, {"mode", 5}}}}});
+    b.node({{"mesh", 0}});
+    const int before = warningCount();
+    Scene scene = load(b.write(dir_ / "lines.gltf"));
+    EXPECT_EQ(scene.triangles.size(), 1u);
+    EXPECT_EQ(warningCount(), before + 2);
+}
+
+// What cannot be read is refused naming the file and what is wrong.
+TEST_F(GltfLoader, BrokenFilesAreRefusedWithTheirReason) {
+    auto expectRefused = [&](GltfBuilder& b, const std::string& expected) {
+        const fs::path file = b.write(dir_ / "broken.gltf");
+        try {
+            load(file);
+            ADD_FAILURE() << "loaded; expected: " << expected;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+            EXPECT_EQ(std::string(e.what()).rfind(file.string(), 0), 0u) << e.what();
+        }
+    };
+    {
+        GltfBuilder b;
+        const int positions = b.positions(kTriangle);
+        b.doc()["accessors"][positions]["count"] = 4;  // one vertex more than its view holds
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", positions}}}})}});
+        expectRefused(b, "reaches beyond its buffer");
+    }
+    {
+        GltfBuilder b;
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}},
+                                  {"indices", b.accessor(std::vector<std::uint16_t>{0, 1, 3}, 5123, "SCALAR", 3)}})}});
+        expectRefused(b, "uses vertex 3, but it has 3");
+    }
+    {
+        GltfBuilder b;
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}})}});
+        b.doc()["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+        b.doc()["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+        expectRefused(b, "requires the glTF extension KHR_draco_mesh_compression");
+    }
+    {
+        GltfBuilder b;
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions({0, 0, 0, 1e30f, 0, 0, 0, 1, 0})}}}})}, {"scale", {1e10, 1, 1}}});
+        expectRefused(b, "is not finite after its transform");
+    }
+    {
+        GltfBuilder b;
+        const int child = b.node({}, false);
+        b.doc()["nodes"][child]["children"] = {child};
+        b.doc()["scenes"][0]["nodes"].push_back(child);
+        expectRefused(b, "is its own ancestor");
+    }
+}
+
+// The binary container reads as the text one.
+TEST_F(GltfLoader, GlbReadsAsGltf) {
+    GltfBuilder b;
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}})}, {"translation", {1, 2, 3}}});
+    const Scene text = load(b.write(dir_ / "a.gltf"));
+    const Scene binary = load(b.writeGlb(dir_ / "a.glb"));
+    ASSERT_EQ(binary.triangles.size(), 1u);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(binary.triangles[0].position[k], text.triangles[0].position[k]);
+}
+
+// In a JSON scene a glTF is an object entry with the OBJ entries' transform; its lights join
+// the scene's, its cameras are not used.
+TEST_F(GltfLoader, JsonSceneEntryTakesTheTransform) {
+    GltfBuilder b;
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}})}});
+    b.write(dir_ / "part.gltf");
+    std::ofstream(dir_ / "scene.json")
+        << R"({"objects": [{"gltf": "part.gltf", "transform": {"translate": [0, 0, 7], "scale": 2}}], "lights": []})";
+    const Scene scene = loadScene(dir_ / "scene.json");
+    ASSERT_EQ(scene.triangles.size(), 1u);
+    expectNear(scene.triangles[0].position[1], {2, 0, 7});
+    expectNear(scene.triangles[0].position[2], {0, 0, 9});
+    std::ofstream(dir_ / "both.json") << R"({"objects": [{"gltf": "part.gltf", "obj": "part.obj"}]})";
+    EXPECT_THROW(loadScene(dir_ / "both.json"), InputError);
+    std::ofstream(dir_ / "mtl.json") << R"({"objects": [{"gltf": "part.gltf", "mtl": "part.gltf"}]})";
+    EXPECT_THROW(loadScene(dir_ / "mtl.json"), InputError);
+}
+
+}  // namespace
+}  // namespace vitrum
+
+namespace vitrum {
+namespace {
+
+// tests/fuzz/corpus/gltf/sparse_strided.gltf: three vertices 24 bytes apart (a byte stride with
+// padding between them), then a sparse accessor that replaces vertex 2, (0, 1, 0), by (0, 2, 0)
+// (glTF 2.0, 3.6.2.3 "Sparse accessors").
+TEST(GltfAccessors, StridedAndSparseAccessorsReadAsTheSpecSays) {
+    const Scene scene = loadScene(fs::path(VITRUM_SOURCE_DIR) / "tests/fuzz/corpus/gltf/sparse_strided.gltf");
+    ASSERT_EQ(scene.triangles.size(), 1u);
+    EXPECT_EQ(scene.triangles[0].position[0], glm::vec3(0, 0, 0));
+    EXPECT_EQ(scene.triangles[0].position[1], glm::vec3(1, 0, 0));
+    EXPECT_EQ(scene.triangles[0].position[2], glm::vec3(0, 0, 2));  // glTF's y is vitrum's z
+}
+
+}  // namespace
+}  // namespace vitrum
