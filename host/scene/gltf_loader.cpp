@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -43,6 +44,8 @@ namespace {
 // requires any other is refused, one that only uses it is read without it, with a warning.
 const std::set<std::string> kReadExtensions = {"KHR_materials_transmission", "KHR_materials_volume",
                                                "KHR_materials_ior", "KHR_materials_specular", "KHR_lights_punctual"};
+
+constexpr std::size_t kMaxElementsWithoutView = std::size_t(1) << 24;
 
 // A glTF vector (x, y, z) in vitrum's z-up coordinates: a swap and a negation, exact in floats,
 // so that a converted OBJ gives the OBJ's own numbers (tests/gpu/gltf_scenes_test.cpp).
@@ -108,9 +111,26 @@ double component(const unsigned char* at, int type, bool normalized) {
     }
 }
 
-// Keeps an image's encoded bytes; they are decoded when a material uses the image.
-bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
-                      const unsigned char* bytes, int size, void*) {
+// Keeps an image's encoded bytes; they are decoded when a material uses the image. tinygltf 2.7
+// passes an image's buffer view without checking it against its buffer (found by fuzzing): bytes
+// that do not lie within one of the model's buffers (or a data URI's own copy, then `size` is
+// its length) are refused here.
+bool keepEncodedImage(tinygltf::Image* image, const int, std::string* err, std::string*, int, int,
+                      const unsigned char* bytes, int size, void* model) {
+    const bool fromBufferView = image->bufferView >= 0;
+    if (fromBufferView) {
+        const auto begin = reinterpret_cast<std::uintptr_t>(bytes);
+        const auto& buffers = static_cast<const tinygltf::Model*>(model)->buffers;
+        const bool within = size >= 0 && std::any_of(buffers.begin(), buffers.end(), [&](const tinygltf::Buffer& b) {
+            const auto first = reinterpret_cast<std::uintptr_t>(b.data.data());
+            return !b.data.empty() && begin >= first && begin - first <= b.data.size() &&
+                   std::size_t(size) <= b.data.size() - (begin - first);
+        });
+        if (!within) {
+            if (err) *err += "image \"" + image->name + "\": its buffer view reaches beyond its buffer\n";
+            return false;
+        }
+    }
     image->image.assign(bytes, bytes + size);
     image->as_is = true;
     return true;
@@ -160,7 +180,7 @@ private:
 
     void parse() {
         tinygltf::TinyGLTF parser;
-        parser.SetImageLoader(keepEncodedImage, nullptr);
+        parser.SetImageLoader(keepEncodedImage, &model_);
         std::string errors, warnings;
         const bool binary = lowerCaseExtension(file_) == ".glb";
         std::error_code ec;
@@ -234,6 +254,16 @@ private:
         const std::size_t size = componentBytes(a.componentType);
         if (size == 0) fail(name + " has an unsupported component type " + std::to_string(a.componentType));
         const std::size_t count = a.count;
+        // Without a buffer view an accessor is zeros (and its sparse values): nothing in the file
+        // bounds its count, so vitrum does (the size of a big model's vertex array).
+        if (a.bufferView < 0 && count > kMaxElementsWithoutView)
+            fail(name + " has " + std::to_string(count) + " elements and no buffer view; vitrum reads at most " +
+                 std::to_string(kMaxElementsWithoutView) + " of those");
+        // Never more elements than the view's bytes can hold, checked before the room is made
+        // (gather checks each element's bytes exactly).
+        if (a.bufferView >= 0 && std::size_t(a.bufferView) < model_.bufferViews.size() &&
+            count > model_.bufferViews[std::size_t(a.bufferView)].byteLength / (size * std::size_t(components)) + 1)
+            fail(name + " reaches beyond its buffer");
         std::vector<double> values(count * std::size_t(components), 0.0);
         auto gather = [&](int viewIndex, std::size_t offset, std::size_t n, int type, int comps,
                           auto&& put) {
@@ -245,6 +275,7 @@ private:
                 fail(name + " uses a buffer that does not exist");
             const std::vector<unsigned char>& buffer = model_.buffers[std::size_t(view.buffer)].data;
             const std::size_t bytes = componentBytes(type) * std::size_t(comps);
+            if (bytes == 0) fail(name + " has an unsupported component type " + std::to_string(type));
             const std::size_t stride = view.byteStride ? view.byteStride : bytes;
             // Written so that no sum can overflow: the view within its buffer, then the last
             // element within the view.
@@ -262,6 +293,10 @@ private:
             });
         if (a.sparse.isSparse) {
             const auto& s = a.sparse;
+            if (s.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                s.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                s.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                fail(name + " has sparse indices that are not unsigned integers");
             std::vector<std::size_t> targets(std::size_t(std::max(s.count, 0)));
             gather(s.indices.bufferView, std::size_t(s.indices.byteOffset), targets.size(), s.indices.componentType, 1,
                    [&](std::size_t i, const unsigned char* at) {
@@ -537,6 +572,7 @@ private:
     int baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3 factor, const std::string& quoted,
                          std::vector<std::string>& ignored) {
         if (info.texCoord != 0) ignored.push_back("baseColorTexture's TEXCOORD_" + std::to_string(info.texCoord) + " (TEXCOORD_0 used)");
+        for (const auto& [key, value] : info.extensions) ignored.push_back("baseColorTexture's " + key);
         if (std::size_t(info.index) >= model_.textures.size()) fail(quoted + " names a texture that does not exist");
         const int source = model_.textures[std::size_t(info.index)].source;
         if (source < 0 || std::size_t(source) >= model_.images.size()) {
@@ -619,6 +655,7 @@ private:
                 fail("a node names camera " + std::to_string(index) + ", which does not exist");
             return model_.cameras[std::size_t(index)].name;
         };
+        for (const auto& c : cameras) cameraName(c.first);  // every camera node names a camera
         const std::pair<int, glm::dmat4>* chosen = nullptr;
         if (!load_.camera.empty()) {
             std::string names;
