@@ -20,6 +20,9 @@ layout(set = 0, binding = kBindingLights, rgba32ui) uniform readonly uimageBuffe
 layout(std430, set = 0, binding = kBindingTextures) readonly buffer Textures { TextureInfo textures[]; };
 layout(std430, set = 0, binding = kBindingTexels) readonly buffer Texels { float texels[]; };  // RGB, packed
 layout(set = 0, binding = kBindingObjectMedia, rgba32ui) uniform readonly uimageBuffer objectMediumTexels;
+// Texel 0: .x = the number of wavelength samples (0 where nothing disperses); texel 1 + k:
+// sample k's weight (.xyz) and its 1 / lambda^2 - 1 / lambda_d^2 (.w), WavelengthSample's.
+layout(set = 0, binding = kBindingWavelengths, rgba32ui) uniform readonly uimageBuffer wavelengthTexels;
 // One tile's pixels, by slot; .w is the slot's status (suspend.glsl), which the resumable kernel reads.
 layout(std430, set = 0, binding = kBindingPixels) buffer Pixels { vec4 pixels[]; };
 layout(std430, set = 0, binding = kBindingStates) buffer States { uvec4 stateTexels[]; };  // TraceStates, see suspend.glsl
@@ -92,5 +95,13 @@ vec4 objectMedium(uint object) { return fetchVec4(objectMediumTexels, kObjectMed
 
 // The priority of that medium (MTL `priority`): where media overlap, the highest is the medium.
 int objectPriority(uint object) { return int(imageLoad(objectMediumTexels, int(kObjectMediumTexels * object + 1u)).x); }
+
+// The Cauchy B of that medium (render_model/dispersion.h), 0 where it does not disperse.
+float objectDispersion(uint object) {
+    return uintBitsToFloat(imageLoad(objectMediumTexels, int(kObjectMediumTexels * object + 1u)).y);
+}
+
+uint wavelengthCount() { return imageLoad(wavelengthTexels, 0).x; }
+vec4 wavelengthSample(uint k) { return fetchVec4(wavelengthTexels, 1u, k); }
 
 #endif

@@ -40,4 +40,37 @@ void addColour(inout ColourSum sum, vec3 colour) {
 
 vec3 colourOfSum(ColourSum sum) { return vec3(sum.high) + vec3(sum.low) * (1.0 / 4294967296.0); }
 
+// With dispersion a term may be negative in a channel, where a wavelength sample's weight lies
+// outside sRGB's gamut (render-model-decisions.md, "Dispersion"): the sum is then a signed 64-bit
+// number in two's complement, a negative term subtracted; a NaN term adds 0.
+void addSignedColour(inout ColourSum sum, vec3 colour) {
+    vec3 magnitude = mix(vec3(0.0), min(abs(colour), vec3(kColourSumLimit)), equal(colour, colour));
+    uvec3 whole = uvec3(magnitude);
+    uvec3 fraction = uvec3((magnitude - vec3(whole)) * 4294967296.0);
+    uvec3 carry, borrow;
+    uvec3 addedLow = uaddCarry(sum.low, fraction, carry);
+    uvec3 addedHigh = sum.high + whole + carry;
+    uvec3 subtractedLow = usubBorrow(sum.low, fraction, borrow);
+    uvec3 subtractedHigh = sum.high - whole - borrow;
+    bvec3 negative = lessThan(colour, vec3(0.0));
+    sum.low = mix(addedLow, subtractedLow, negative);
+    sum.high = mix(addedHigh, subtractedHigh, negative);
+}
+
+// sum += add for signed sums: two's complement wraps, it does not saturate.
+void addSignedColourSums(inout ColourSum sum, ColourSum add) {
+    uvec3 carry;
+    sum.low = uaddCarry(sum.low, add.low, carry);
+    sum.high = sum.high + add.high + carry;
+}
+
+vec3 colourOfSignedSum(ColourSum sum) {
+    bvec3 negative = greaterThanEqual(sum.high, uvec3(0x80000000u));
+    uvec3 carry;
+    uvec3 negatedLow = uaddCarry(~sum.low, uvec3(1u), carry);
+    uvec3 negatedHigh = ~sum.high + carry;
+    vec3 magnitude = colourOfSum(ColourSum(mix(sum.low, negatedLow, negative), mix(sum.high, negatedHigh, negative)));
+    return mix(magnitude, -magnitude, negative);
+}
+
 #endif

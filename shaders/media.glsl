@@ -30,14 +30,40 @@ uint ruling(uvec4 media, uint count) {
     return best;
 }
 
-// IOR of the medium inside `count` objects in `media`, or of the scene's air.
-float ior(uvec4 media, uint count) {
+// A ray's wavelength, in origin.w above its depth: from bit 8 the wavelength code, 0 for a white
+// ray, 1 + k for wavelength sample k; bit 16 marks a split ray's samples from k on that still wait
+// to be traced (render-model-decisions.md, "Dispersion"; shading.glsl's splitIntoWavelengths).
+const uint kWavelengthShift = 8u;
+const uint kWavelengthsWaiting = 1u << 16u;
+uint wavelengthCode(PendingRay r) { return kDispersion ? (floatBitsToUint(r.origin.w) >> kWavelengthShift) & 0xFFu : 0u; }
+
+// An index n_d of object `object`'s glass at the wavelength of a ray of wavelength code `code`:
+// n_d + B (1 / lambda^2 - 1 / lambda_d^2), n_d itself for a white ray or a medium that does not
+// disperse (render_model/dispersion.h's dispersedIor).
+float dispersedIor(float nd, uint object, uint code) {
+    if (!kDispersion || code == 0u) return nd;
+    float b = objectDispersion(object);
+    return b == 0.0 ? nd : nd + b * wavelengthSample(code - 1u).w;
+}
+
+// IOR of the medium inside `count` objects in `media`, or of the scene's air, for a ray of
+// wavelength code `code`.
+float ior(uvec4 media, uint count, uint code) {
     if (!usesMaterial(kMaterialGlass) || count == 0u) return airIor();
-    return objectMedium(media[ruling(media, count)]).w;
+    uint object = media[ruling(media, count)];
+    return dispersedIor(objectMedium(object).w, object, code);
 }
 
 // IOR of the medium a ray is in.
-float mediumIor(PendingRay r) { return ior(r.media, mediaCount(r)); }
+float mediumIor(PendingRay r) { return ior(r.media, mediaCount(r), wavelengthCode(r)); }
+
+// Whether a white ray splits at a glass hit on `object`: its medium or the medium the ray is in
+// disperses (render-model-decisions.md, "Dispersion").
+bool splitsAt(PendingRay r, uint object) {
+    if (!kDispersion || wavelengthCode(r) != 0u || wavelengthCount() == 0u) return false;
+    uint count = mediaCount(r);
+    return objectDispersion(object) != 0.0 || (count > 0u && objectDispersion(r.media[ruling(r.media, count)]) != 0.0);
+}
 
 vec3 mediumAttenuation(PendingRay r) {
     if (!kAbsorption) return vec3(0.0);

@@ -81,10 +81,12 @@ void shareRays(bool canTake) {
         uint owner = subgroupShuffle(gOwner, taker);
         if (self == owner) {
             if (gTaken) {  // the owner is tracing a taken tree itself (maybe this one's)
-                addColourSums(gOwnColour, colour);
+                if (kDispersion) addSignedColourSums(gOwnColour, colour);
+                else addColourSums(gOwnColour, colour);
                 gOwnSteps += steps;
             } else {
-                addColourSums(st.colour, colour);
+                if (kDispersion) addSignedColourSums(st.colour, colour);
+                else addColourSums(st.colour, colour);
                 counters.loopSteps += steps;
             }
         }

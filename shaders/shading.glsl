@@ -20,6 +20,49 @@
 // terms, added to the fixed-point sum once at the round's end (colour_sum.glsl).
 vec3 gRoundColour = vec3(0.0);
 
+// A white ray that met a dispersive glass becomes its wavelength samples, each traced again from
+// the ray's origin with its share of the weight (render-model-decisions.md, "Dispersion"): sample
+// 0 at once; the others wait as one pending entry, the white ray marked with the next sample,
+// which starts one sample each time it is read (startWaitingWavelength), so that no loop pushes
+// them all and the stack holds one entry for them.
+void splitIntoWavelengths() {
+    uint depth = rayDepth(st.ray);
+    if (wavelengthCount() > 1u) {
+        if (st.pendingRays >= kPendingRayCapacity) {
+            counters.rayStackOverflows += 1u;  // the other samples are dropped, never silently
+        } else {
+            PendingRay waiting = st.ray;
+            waiting.origin.w = uintBitsToFloat(depth | (2u << kWavelengthShift) | kWavelengthsWaiting);
+            storePendingRay(pendingRayIndex(st.pendingRays), waiting);
+            st.pendingRays += 1u;
+        }
+    }
+    st.ray.origin.w = uintBitsToFloat(depth | (1u << kWavelengthShift));
+    st.ray.weight.xyz *= wavelengthSample(0u).xyz;
+    beginClosestTraversal();
+}
+
+// A ray just read from the pending rays that stands for a split ray's waiting samples: the next
+// of them starts now, the rest wait on in the entry it was read from.
+void startWaitingWavelength() {
+    uint bits = floatBitsToUint(st.ray.origin.w);
+    if ((bits & kWavelengthsWaiting) == 0u) return;
+    uint depth = bits & 0xFFu;
+    uint code = (bits >> kWavelengthShift) & 0xFFu;
+    if (code < wavelengthCount()) {
+        if (st.pendingRays >= kPendingRayCapacity) {
+            counters.rayStackOverflows += 1u;
+        } else {
+            PendingRay rest = st.ray;
+            rest.origin.w = uintBitsToFloat(depth | ((code + 1u) << kWavelengthShift) | kWavelengthsWaiting);
+            storePendingRay(pendingRayIndex(st.pendingRays), rest);
+            st.pendingRays += 1u;
+        }
+    }
+    st.ray.origin.w = uintBitsToFloat(depth | (code << kWavelengthShift));
+    st.ray.weight.xyz *= wavelengthSample(code - 1u).xyz;
+}
+
 // The closest-hit traversal of st.ray is over: record the hit (triangle `tri`, material `m`, both
 // read by traceUnit) or take the background.
 void finishTrace(TriangleVertices tri, GpuMaterial m) {
@@ -35,6 +78,11 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
         }
         gRoundColour += escaped;
         st.phase = kPhaseNextRay;
+        return;
+    }
+    if (kDispersion && usesMaterial(kMaterialGlass) && materialModel(m) == kMaterialGlass &&
+        splitsAt(st.ray, floatBitsToUint(tri.v1.w))) {
+        splitIntoWavelengths();
         return;
     }
     float t = st.traversal.tMax;
@@ -159,7 +207,9 @@ bool admitChild(uint depth, vec3 weight) {
         counters.depthLimitHits += 1u;
         return false;
     }
-    if (all(lessThan(weight, vec3(minWeight())))) {
+    // A wavelength sample's weight may be negative in a channel (outside sRGB's gamut): its size
+    // is what min_weight compares (render-model-decisions.md, "Dispersion").
+    if (all(lessThan(kDispersion ? abs(weight) : weight, vec3(minWeight())))) {
         counters.weightCuts += 1u;
         return false;
     }
@@ -168,7 +218,8 @@ bool admitChild(uint depth, vec3 weight) {
 
 PendingRay childRay(vec3 origin, vec3 direction, vec3 weight, uvec4 media, uint count, uint depth) {
     PendingRay r;
-    r.origin = vec4(origin, uintBitsToFloat(depth));
+    // A child keeps its parent's wavelength (never the mark of samples waiting).
+    r.origin = vec4(origin, uintBitsToFloat(depth | (wavelengthCode(st.ray) << kWavelengthShift)));
     r.direction = vec4(direction, uintBitsToFloat(count));
     r.weight = vec4(weight, 0.0);
     r.media = media;
@@ -205,8 +256,10 @@ void scatter(GpuMaterial m) {
     if (usesMaterial(kMaterialGlass) && glass) {
         bool falseSurface = falseHit(media, count, st.hit.object, ieeeDot(d, facing) < 0.0);
         bool entering = crossGlass(media, count);
-        if (!entering) n1 = m.attenuation.w;
-        if (!entering || (kTouchingProbe && st.touching.w > 0u)) n2 = ior(media, count);
+        float hitIor = dispersedIor(m.attenuation.w, st.hit.object, wavelengthCode(st.ray));
+        if (entering) n2 = hitIor;
+        if (!entering) n1 = hitIor;
+        if (!entering || (kTouchingProbe && st.touching.w > 0u)) n2 = ior(media, count, wavelengthCode(st.ray));
         if (falseSurface) {  // the medium stays the one of higher priority: the ray goes on
             n1 = mediumIor(st.ray);
             n2 = n1;

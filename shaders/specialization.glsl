@@ -26,6 +26,7 @@ layout(constant_id = kConstantSingleSample) const bool kSingleSample = false;  /
 layout(constant_id = kConstantOpaqueContact) const bool kOpaqueContact = true;  // glass may rest on an opaque surface
 layout(constant_id = kConstantCoincidentOpaque) const bool kCoincidentOpaque = true;  // opaque surfaces of two objects may coincide
 layout(constant_id = kConstantMediumPriorities) const bool kMediumPriorities = true;  // glass media of different priorities
+layout(constant_id = kConstantDispersion) const bool kDispersion = true;  // some glass disperses (MTL Vd)
 // Not a scene feature but the kernel's role (shaders/suspend.glsl): the first dispatch of a tile
 // runs without it and gives up the pixels that need more than one dispatch; the resumable kernel
 // restarts them and suspends them between dispatches.

@@ -96,7 +96,8 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
                 if (kSingleSample) st.phase = kPhaseDone;
                 else startSample(pixel);
             }
-            addColour(st.colour, gRoundColour);
+            if (kDispersion) addSignedColour(st.colour, gRoundColour);
+            else addColour(st.colour, gRoundColour);
             gRoundColour = vec3(0.0);
         }
 #ifndef VITRUM_NO_SUBGROUP_OPERATIONS
@@ -112,6 +113,7 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
 #endif
             if (gLoad || (kRaySharing && gReceives)) {
                 st.ray = loaded;
+                if (kDispersion) startWaitingWavelength();
                 beginRay();
             }
             gLoad = false;
@@ -129,7 +131,8 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
     st.steps += counters.loopSteps;
     bool done = st.phase == kPhaseDone && !givenUpGroup;
     if (hasPixel) {
-        pixels[slot] = slotPixel(done, colourOfSum(st.colour) / float(samplesPerPixel()));
+        vec3 sum = kDispersion ? colourOfSignedSum(st.colour) : colourOfSum(st.colour);
+        pixels[slot] = slotPixel(done, sum / float(samplesPerPixel()));
         if (kResumable) suspendState(slot, !done);
     }
 

@@ -68,7 +68,9 @@ const uint kPhaseScatter = 4u;      // spawn reflected / refracted rays
 const uint kPhaseNextRay = 5u;      // pop a pending ray, or finish the sample
 const uint kPhaseDone = 6u;
 
-uint rayDepth(PendingRay r) { return floatBitsToUint(r.origin.w); }
+// origin.w: the depth in its low 8 bits; above them, with dispersion, the ray's wavelength
+// (media.glsl's wavelengthCode).
+uint rayDepth(PendingRay r) { return floatBitsToUint(r.origin.w) & 0xFFu; }
 uint mediaCount(PendingRay r) { return floatBitsToUint(r.direction.w); }
 uint materialModel(GpuMaterial m) { return floatBitsToUint(m.ambient.w); }
 

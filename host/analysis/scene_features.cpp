@@ -159,6 +159,7 @@ SceneFeatures analyseScene(const Scene& scene) {
                 f.glass = f.reflection = true;
                 if (m.attenuation != glm::vec3(0.0f)) f.absorbingMedia = true;
                 glassPriorities.insert(m.priority);
+                if (m.abbe > 0.0f) f.dispersion = true;
                 break;
             case MaterialModel::Mirror: f.reflection = true; break;
             case MaterialModel::Phong: f.reflection = true; [[fallthrough]];
@@ -209,7 +210,10 @@ SceneFeatures analyseScene(const Scene& scene) {
                                                   : std::min<std::uint32_t>(gpu::kMaxMediumDepth, 1 + mostOverlaps);
 
     const std::uint32_t maxDepth = scene.settings.maxDepth;
-    f.rayStackDepth = f.glass ? std::min<std::uint32_t>(gpu::kRayStackSize, maxDepth > 0 ? maxDepth - 1 : 0) : 0;
+    // Dispersion: a split ray's samples wait as one pending entry below its subtree (trace.comp).
+    f.rayStackDepth = f.glass ? std::min<std::uint32_t>(gpu::kRayStackSize, (maxDepth > 0 ? maxDepth - 1 : 0) +
+                                                                              (f.dispersion ? 1 : 0))
+                              : 0;
     f.textures = f.textures && !scene.textures.empty();
     f.background = scene.background.kind;
     f.usefulDepth = f.reflection ? maxDepth : std::min<std::uint32_t>(1, maxDepth);
@@ -233,6 +237,7 @@ std::vector<std::string> SceneFeatures::describe() const {
             " objects" + (openGlassObjects ? ", " + std::to_string(openGlassObjects) + " of them open or badly wound" : ""),
         std::string("absorbing media (Beer-Lambert): ") + yesNo(absorbingMedia),
         std::string("overlapping media by priority: ") + yesNo(mediumPriorities),
+        std::string("dispersion (wavelength samples): ") + yesNo(dispersion),
         std::string("touching glass surfaces possible: ") + yesNo(touchingMediaPossible),
         std::string("glass resting on opaque surfaces possible: ") + yesNo(opaqueContactPossible),
         std::string("coincident opaque surfaces of two objects possible: ") + yesNo(coincidentOpaquePossible),
@@ -254,6 +259,7 @@ nlohmann::json toJson(const SceneFeatures& f) {
         {"open_glass_objects", f.openGlassObjects},
         {"absorbing_media", f.absorbingMedia},
         {"medium_priorities", f.mediumPriorities},
+        {"dispersion", f.dispersion},
         {"touching_media_possible", f.touchingMediaPossible},
         {"opaque_contact_possible", f.opaqueContactPossible},
         {"coincident_opaque_possible", f.coincidentOpaquePossible},

@@ -28,6 +28,9 @@ struct SceneFeatures {
     // highest is the medium, and surfaces inside it are false hits (render-model-decisions.md,
     // "Overlapping media by priority"). Equal priorities change nothing.
     bool mediumPriorities = false;
+    // Some glass disperses (MTL `Vd`): a ray meeting it splits into wavelength samples
+    // (render-model-decisions.md, "Dispersion").
+    bool dispersion = false;
     // Two triangles of different glass objects that may lie within twice the touching distance
     // of each other (analysis/glass_proximity.h): only then can a touching probe find anything, so
     // otherwise neither backend probes. Nested objects apart from each other need no probe.

@@ -9,6 +9,7 @@
 #include "common/error.h"
 #include "common/file_extension.h"
 #include "gpu/tile_size.h"
+#include "render_model/dispersion.h"
 #include "scene/float_range.h"
 
 namespace vitrum {
@@ -47,6 +48,8 @@ docs/distributed.md).
            std::to_string(kMaxSamplesPerPixel) + R"(): 1 = pixel centre, more = stratified jitter
   --max-depth N            rays are traced while their depth is below N (0..)" +
            std::to_string(kMaxRayDepth) + "; default " + std::to_string(defaults.maxDepth) + R"()
+  --wavelengths N          wavelength samples a ray splits into at a dispersive glass (1..)" +
+           std::to_string(kMaxWavelengths) + "; default " + std::to_string(defaults.wavelengths) + R"()
   --min-weight W           skip branches whose path weight is below W in every channel (default 0)
   --fresnel MODEL          schlick (default) | exact | schlick-exp2, for glass
   --filter MODE            bilinear (default) | nearest: textures and environment maps
@@ -91,6 +94,7 @@ RenderCommand parseRenderCommand(int argc, char** argv, int first) {
         else if (flag == "--width") c.width = Arguments::toUint(flag, args.valueOf(flag), 1, kMaxImageSide);
         else if (flag == "--height") c.height = Arguments::toUint(flag, args.valueOf(flag), 1, kMaxImageSide);
         else if (flag == "--spp") c.spp = Arguments::toUint(flag, args.valueOf(flag), 1, kMaxSamplesPerPixel);
+        else if (flag == "--wavelengths") c.wavelengths = Arguments::toUint(flag, args.valueOf(flag), kMinWavelengths, kMaxWavelengths);
         else if (flag == "--max-depth") c.maxDepth = Arguments::toUint(flag, args.valueOf(flag), 0, kMaxRayDepth);
         else if (flag == "--min-weight") {
             float w = Arguments::toFloat(flag, args.valueOf(flag));
@@ -154,6 +158,7 @@ void applyOverrides(const RenderCommand& c, Scene& scene) {
     if (c.height) scene.camera.height = *c.height;
     if (c.spp) scene.settings.samplesPerPixel = *c.spp;
     if (c.maxDepth) scene.settings.maxDepth = *c.maxDepth;
+    if (c.wavelengths) scene.settings.wavelengths = *c.wavelengths;
     if (c.minWeight) scene.settings.minWeight = *c.minWeight;
     if (c.fresnel) scene.settings.fresnel = *c.fresnel;
     if (c.filter) scene.settings.filter = *c.filter;

@@ -25,7 +25,7 @@ struct RenderCommand {
     unsigned threads = 0;
     VulkanRenderOptions gpu;
     // Overrides of the scene.
-    std::optional<std::uint32_t> width, height, spp, maxDepth;
+    std::optional<std::uint32_t> width, height, spp, maxDepth, wavelengths;
     std::optional<float> minWeight, fov;
     std::optional<FresnelModel> fresnel;
     std::optional<TextureFilter> filter;

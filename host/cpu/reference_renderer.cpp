@@ -28,6 +28,7 @@
 
 #include "bvh/bvh_traversal.h"
 #include "cpu/optics.h"
+#include "render_model/dispersion.h"
 #include "render_model/ray_offset.h"
 #include "render_model/medium_materials.h"
 #include "render_model/sampling.h"
@@ -81,6 +82,14 @@ public:
           coincidentOpaquePossible_(features.coincidentOpaquePossible),
           minWeight_(Real(scene.settings.minWeight)),
           offsetScale_(rayOffsetScale(scene.triangles)) {
+        // Each object's medium's Cauchy B (0 without dispersion), in float as the GPU gets it;
+        // the wavelength samples only where some medium disperses.
+        for (std::uint32_t material : mediumMaterials_) {
+            const Material& m = scene.materials[material];
+            mediumDispersion_.push_back(m.model == MaterialModel::Glass ? float(cauchyB(m.ior, m.abbe)) : 0.0f);
+        }
+        if (std::any_of(mediumDispersion_.begin(), mediumDispersion_.end(), [](float b) { return b != 0.0f; }))
+            samples_ = wavelengthSamples(scene.settings.wavelengths);
         const Camera& c = scene.camera;
         cameraFrom_ = Vec3(c.from);
         cameraZ_ = glm::normalize(Vec3(c.from) - Vec3(c.at));
@@ -88,6 +97,9 @@ public:
         cameraY_ = glm::cross(cameraZ_, cameraX_);
         focal_ = Real(c.height) / (Real(2) * std::tan(glm::radians(Real(c.fovY)) / Real(2)));
     }
+
+    // Whether some medium disperses: rays split into wavelength samples.
+    bool disperses() const { return !samples_.empty(); }
 
     // The averaged colour of pixel (x, y) over the scene's samples (box filter).
     Color renderPixel(std::uint32_t x, std::uint32_t y, TraceCounters& counters) const {
@@ -109,7 +121,7 @@ public:
             // Off the surface the camera lies on, if any, on the ray's side (analysis/camera_surface.h).
             const bool behind = glm::dot(d, cameraSurface_) < Real(0);
             sum += trace(cameraFrom_, primaryRayOrigin(cameraFrom_, cameraSurface_, d, offsetScale_), d, 0,
-                         behind ? cameraMediaBehind_ : cameraMedia_, Color(1), counters);
+                         behind ? cameraMediaBehind_ : cameraMedia_, Color(1), kWhite, counters);
         }
         return sum / Real(n);
     }
@@ -125,11 +137,15 @@ private:
         std::uint32_t object;
     };
 
+    // A ray of every wavelength, before it meets a dispersive glass; else the index of its
+    // wavelength sample (render_model/dispersion.h).
+    static constexpr int kWhite = -1;
+
     // Radiance arriving at the ray's origin along direction d (unit). `start` is the un-offset point
     // the ray leaves from (`origin` is offset off its surface); `weight` is the product of the path
-    // factors so far, used only for min_weight.
+    // factors so far, used only for min_weight; `sample` the ray's wavelength sample, or kWhite.
     Color trace(const Vec3& start, const Vec3& origin, const Vec3& d, std::uint32_t depth, const MediumStack& media,
-                const Color& weight, TraceCounters& counters) const {
+                const Color& weight, int sample, TraceCounters& counters) const {
         Ray<Real> ray{origin, d, Real(0), std::numeric_limits<Real>::max()};
         counters.logRay(ray, false);
         counters.maxRayDepth = std::max<std::uint64_t>(counters.maxRayDepth, depth);
@@ -149,6 +165,17 @@ private:
             return escaped;
         }
         const Hit hit = describeHit(*found, d);
+        if (sample == kWhite && splitsHere(hit, media)) {
+            // A white ray meeting a dispersive glass splits into its wavelength samples, each
+            // traced again from this ray's origin with its share of the weight, as the GPU does
+            // (render-model-decisions.md, "Dispersion").
+            Color sum(0);
+            for (int k = 0; k < int(samples_.size()); ++k) {
+                const Color share(samples_[std::size_t(k)].weight);
+                sum += share * trace(start, origin, d, depth, media, weight * share, k, counters);
+            }
+            return sum;
+        }
         // Beer-Lambert over the segment just travelled, from un-offset point to un-offset point
         // (docs/render-model-decisions.md, "Absorption lengths"); air (mu = 0) gives 1 (lecture: l = 0
         // in air).
@@ -156,8 +183,8 @@ private:
         const Color w = weight * transmittance;
         Color colour;
         switch (hit.material->model) {
-            case MaterialModel::Glass: colour = shadeGlass(hit, origin, d, depth, media, w, counters); break;
-            default: colour = shadeOpaque(hit, d, depth, media, w, counters); break;
+            case MaterialModel::Glass: colour = shadeGlass(hit, origin, d, depth, media, w, sample, counters); break;
+            default: colour = shadeOpaque(hit, d, depth, media, w, sample, counters); break;
         }
         return colour * transmittance;
     }
@@ -192,7 +219,7 @@ private:
     // ---- Opaque materials: normal, Lambert, Phong (opaque dielectric), mirror ----------------
 
     Color shadeOpaque(Hit hit, const Vec3& d, std::uint32_t depth, const MediumStack& media, const Color& weight,
-                      TraceCounters& counters) const {
+                      int sample, TraceCounters& counters) const {
         // Both normals face the incoming ray (render model: "flipped to face the incoming ray").
         if (glm::dot(hit.geometricNormal, d) > Real(0)) hit.geometricNormal = -hit.geometricNormal;
         if (glm::dot(hit.shadingNormal, d) > Real(0)) hit.shadingNormal = -hit.shadingNormal;
@@ -203,18 +230,18 @@ private:
             case MaterialModel::Mirror: {
                 // m_s * C_refl
                 const Color ms(m.specular);
-                return ms * traceReflection(hit, d, depth, media, weight * ms, counters);
+                return ms * traceReflection(hit, d, depth, media, weight * ms, sample, counters);
             }
             case MaterialModel::Phong:
             default: {
                 // Lecture, "Composition": C = C_phong + R(theta_i) C_refl, R Schlick's with F0 from
                 // the current medium's IOR and Ni; the reflection is not tinted.
-                const Real n1 = mediumIor(media);
+                const Real n1 = mediumIor(media, sample);
                 const Real n2 = Real(m.ior);
                 const Real cosI = -glm::dot(d, hit.shadingNormal);
                 const Real r = optics::fresnel(FresnelModel::Schlick, n1, n2, cosI);
                 const Color phong = directLight(hit, d, counters);
-                return phong + r * traceReflection(hit, d, depth, media, weight * r, counters);
+                return phong + r * traceReflection(hit, d, depth, media, weight * r, sample, counters);
             }
         }
     }
@@ -269,26 +296,29 @@ private:
 
     // C_refl of an opaque surface: the reflected ray keeps the medium stack.
     Color traceReflection(const Hit& hit, const Vec3& d, std::uint32_t depth, const MediumStack& media,
-                          const Color& weight, TraceCounters& counters) const {
+                          const Color& weight, int sample, TraceCounters& counters) const {
         const Vec3 origin = offsetRayOrigin(hit.position, hit.geometricNormal, offsetScale_);
         return traceChild(hit.position, origin, optics::reflect(d, hit.shadingNormal), depth, media, weight, true,
-                          counters);
+                          sample, counters);
     }
 
     // A secondary ray of depth + 1, unless max_depth or min_weight stops it (both counted).
     Color traceChild(const Vec3& start, const Vec3& origin, const Vec3& direction, std::uint32_t depth,
-                     const MediumStack& media, const Color& weight, bool reflection, TraceCounters& counters) const {
+                     const MediumStack& media, const Color& weight, bool reflection, int sample,
+                     TraceCounters& counters) const {
         if (depth + 1 >= maxDepth_) {
             counters.depthLimitHits += 1;
             return Color(0);
         }
-        if (glm::all(glm::lessThan(weight, Color(minWeight_)))) {
+        // Its size: a wavelength sample's weight may be negative in a channel (render-model-
+        // decisions.md, "Dispersion"); other weights are never negative.
+        if (glm::all(glm::lessThan(glm::abs(weight), Color(minWeight_)))) {
             counters.weightCuts += 1;
             return Color(0);
         }
         if (reflection) counters.reflectionRays += 1;
         else counters.refractionRays += 1;
-        return trace(start, origin, direction, depth + 1, media, weight, counters);
+        return trace(start, origin, direction, depth + 1, media, weight, sample, counters);
     }
 
     // ---- Glass -------------------------------------------------------------------------------
@@ -296,7 +326,7 @@ private:
     // [R C_refl + (1 - R) C_refr] (lecture, "Attenuation of Refracted Ray in Glass"; T_BL is applied
     // by trace() to the segment that led here).
     Color shadeGlass(const Hit& hit, const Vec3& rayOrigin, const Vec3& d, std::uint32_t depth,
-                     const MediumStack& media, const Color& weight, TraceCounters& counters) const {
+                     const MediumStack& media, const Color& weight, int sample, TraceCounters& counters) const {
         // Entering or leaving the object is decided by the geometric normal of the consistently
         // wound, closed mesh (lecture, "Problematic Cases", assumption 1).
         const bool entering = glm::dot(d, hit.geometricNormal) < Real(0);
@@ -325,15 +355,16 @@ private:
             else counters.inconsistentMedia += 1;
         }
         counters.maxMediumDepth = std::max<std::uint64_t>(counters.maxMediumDepth, inside.size());
-        Real n1 = entering ? mediumIor(media) : Real(hit.material->ior);
-        Real n2 = entering && crossings.size() == 1 ? Real(hit.material->ior) : mediumIor(inside);
+        const Real hitIor = dispersed(hit.material->ior, hit.object, sample);
+        Real n1 = entering ? mediumIor(media, sample) : hitIor;
+        Real n2 = entering && crossings.size() == 1 ? hitIor : mediumIor(inside, sample);
         // A surface of a medium of lower priority than the one the ray is in, entered or left
         // from inside, is a false hit: no interface, the ray goes on through it (Schmidt and
         // Budge, JGT 2002; render-model-decisions.md, "Overlapping media by priority").
         if (crossings.size() == 1 && !media.empty() &&
             (entering || std::find(media.begin(), media.end(), hit.object) != media.end()) &&
             priority(hit.object) < priority(media[ruling(media)])) {
-            n1 = n2 = mediumIor(media);
+            n1 = n2 = mediumIor(media, sample);
             counters.falseHits += 1;
         }
 
@@ -345,7 +376,8 @@ private:
         if (n1 == n2) {
             // Index-matched: no optical interface. The same ray goes on, at the same depth, with the
             // updated stack (render model, "The ray tree").
-            return trace(through, offsetRayOrigin(through, -facing, offsetScale_), d, depth, inside, weight, counters);
+            return trace(through, offsetRayOrigin(through, -facing, offsetScale_), d, depth, inside, weight, sample,
+                         counters);
         }
         const Real eta = n1 / n2;
         const Real cosI = -glm::dot(d, n);
@@ -355,13 +387,13 @@ private:
         if (refracted) {
             const Color wt = weight * (Real(1) - r);
             const Vec3 origin = offsetRayOrigin(through, -facing, offsetScale_);
-            colour += (Real(1) - r) * traceChild(through, origin, *refracted, depth, inside, wt, false, counters);
+            colour += (Real(1) - r) * traceChild(through, origin, *refracted, depth, inside, wt, false, sample, counters);
         } else {
             counters.totalInternalReflections += 1;  // R = 1 (the Fresnel functions return it)
         }
         // The reflected ray stays in the medium it came from: it keeps the old stack.
         colour += r * traceChild(hit.position, offsetRayOrigin(hit.position, facing, offsetScale_), optics::reflect(d, n), depth,
-                                 media, weight * r, true, counters);
+                                 media, weight * r, true, sample, counters);
         return colour;
     }
 
@@ -472,9 +504,24 @@ private:
     int priority(std::uint32_t object) const { return scene_.materials[mediumMaterials_[object]].priority; }
 
     // IOR of the medium a ray is in, or the scene's air.
-    Real mediumIor(const MediumStack& media) const {
+    Real mediumIor(const MediumStack& media, int sample) const {
         if (media.empty()) return Real(scene_.airIor);
-        return Real(scene_.materials[mediumMaterials_[media[ruling(media)]]].ior);
+        const std::uint32_t object = media[ruling(media)];
+        return dispersed(scene_.materials[mediumMaterials_[object]].ior, object, sample);
+    }
+
+    // An index n_d of object `object`'s glass at the ray's wavelength sample: n_d itself for a
+    // white ray or a medium without dispersion (render_model/dispersion.h).
+    Real dispersed(float nd, std::uint32_t object, int sample) const {
+        if (sample == kWhite || mediumDispersion_[object] == 0.0f) return Real(nd);
+        return Real(nd) + Real(mediumDispersion_[object]) * Real(samples_[std::size_t(sample)].offset);
+    }
+
+    // Whether a white ray splits at `hit`: a glass hit where the object's medium or the medium
+    // the ray is in disperses.
+    bool splitsHere(const Hit& hit, const MediumStack& media) const {
+        if (samples_.empty() || hit.material->model != MaterialModel::Glass) return false;
+        return mediumDispersion_[hit.object] != 0.0f || (!media.empty() && mediumDispersion_[media[ruling(media)]] != 0.0f);
     }
 
     Color mediumAttenuation(const MediumStack& media) const {
@@ -487,6 +534,8 @@ private:
     const RayIntersector* intersector_;  // null: the BVH's nodes
     std::vector<gpu::TriangleVertices> vertices_;
     std::vector<std::uint32_t> mediumMaterials_;
+    std::vector<float> mediumDispersion_;          // an object's medium's Cauchy B, 0 without dispersion
+    std::vector<WavelengthSample> samples_;        // empty where nothing disperses
     MediumStack cameraMedia_;  // every primary ray starts inside them (SceneFeatures::cameraMedia)
     MediumStack cameraMediaBehind_;  // or these, where it goes against cameraSurface_
     Vec3 cameraSurface_;  // the normal of the surface the camera lies on, 0 if none
@@ -522,10 +571,11 @@ void renderRows(const Scene& scene, const Bvh& bvh, unsigned threadCount, const 
             for (std::uint32_t x = 0; x < width; ++x) {
                 counters.pixel = y * width + x;
                 const glm::vec<3, Real> c = tracer.renderPixel(x, y, counters);
-                // The render model's invariant: no NaN, Inf or negative value in any pixel.
+                // The render model's invariant: no NaN, Inf or negative value in any pixel; but for
+                // the negative channels of dispersion, kept (render-model-decisions.md, "Dispersion").
                 glm::vec3 pixel(c);
                 for (int i = 0; i < 3; ++i)
-                    if (!std::isfinite(pixel[i]) || pixel[i] < 0.0f) pixel[i] = 0.0f;
+                    if (!std::isfinite(pixel[i]) || (pixel[i] < 0.0f && !tracer.disperses())) pixel[i] = 0.0f;
                 image.at(x, y) = pixel;
             }
             const std::uint32_t done = ++rowsDone;

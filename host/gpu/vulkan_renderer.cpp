@@ -32,14 +32,23 @@ std::span<const T> spanOf(const std::vector<T>& v) {
     return std::span<const T>(v.data(), v.size());
 }
 
-// gpu::kObjectMediumTexels an object: its medium's material's `attenuation` (Tf, Ni) and its
-// priority, which bindings.glsl's objectMedium() and objectPriority() read.
+// gpu::kObjectMediumTexels an object: its medium's material's `attenuation` (Tf, Ni), its
+// priority and its dispersion, which bindings.glsl's objectMedium(), objectPriority() and
+// objectDispersion() read.
 std::vector<glm::vec4> objectMediumTexels(const PackedTables& packed) {
     std::vector<glm::vec4> texels;
     for (std::size_t object = 0; object < packed.objectMaterials.size(); ++object) {
         texels.push_back(packed.materials[packed.objectMaterials[object]].attenuation);
-        texels.push_back(glm::vec4(std::bit_cast<float>(packed.objectPriorities[object]), 0.0f, 0.0f, 0.0f));
+        texels.push_back(glm::vec4(std::bit_cast<float>(packed.objectPriorities[object]), packed.objectDispersions[object],
+                                   0.0f, 0.0f));
     }
+    return texels;
+}
+
+// bindings.glsl's wavelengthTexels: the count, then each wavelength sample.
+std::vector<glm::vec4> wavelengthTexels(const PackedTables& packed) {
+    std::vector<glm::vec4> texels{glm::vec4(std::bit_cast<float>(std::uint32_t(packed.wavelengths.size())), 0.0f, 0.0f, 0.0f)};
+    for (const WavelengthSample& sample : packed.wavelengths) texels.push_back(glm::vec4(sample.weight, sample.offset));
     return texels;
 }
 
@@ -92,6 +101,7 @@ TraceBuffers makeBuffers(VulkanDevice& device, const Scene& scene, const Bvh& bv
     b.add(gpu::kBindingTextures, makeStorageBuffer(device, spanOf(packed.textures), "texture table"));
     b.add(gpu::kBindingTexels, makeStorageBuffer(device, spanOf(packed.texels), "texture texels"));
     b.add(gpu::kBindingObjectMedia, makeTexelBuffer(device, spanOf(objectMediumTexels(packed)), "object media"));
+    b.add(gpu::kBindingWavelengths, makeTexelBuffer(device, spanOf(wavelengthTexels(packed)), "wavelength samples"));
     for (const TileBuffer& buffer : kTileBuffers) {
         const VkDeviceSize bytes = std::max<VkDeviceSize>(tileBufferBytes(buffer, tile, pendingRayCapacity), 16);
         b.add(buffer.binding, GpuBuffer(device, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, buffer.what, buffer.memory));

@@ -63,8 +63,14 @@ PackedTables packTables(const Scene& scene) {
         for (const glm::vec3& texel : texture.texels) packed.texels.insert(packed.texels.end(), {texel.x, texel.y, texel.z});
     }
     packed.objectMaterials = objectMediumMaterials(scene);
-    for (std::uint32_t material : packed.objectMaterials)
-        packed.objectPriorities.push_back(material < scene.materials.size() ? scene.materials[material].priority : 0);
+    for (std::uint32_t material : packed.objectMaterials) {
+        const Material* m = material < scene.materials.size() ? &scene.materials[material] : nullptr;
+        packed.objectPriorities.push_back(m ? m->priority : 0);
+        // As the CPU reference takes it (cpu/reference_renderer.cpp): glass media only.
+        packed.objectDispersions.push_back(m && m->model == MaterialModel::Glass ? float(cauchyB(m->ior, m->abbe)) : 0.0f);
+    }
+    if (std::any_of(packed.objectDispersions.begin(), packed.objectDispersions.end(), [](float b) { return b != 0.0f; }))
+        packed.wavelengths = wavelengthSamples(scene.settings.wavelengths);
     return packed;
 }
 

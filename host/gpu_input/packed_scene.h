@@ -8,6 +8,7 @@
 
 #include "bvh/bvh.h"
 #include "gpu_input/traversal_nodes.h"
+#include "render_model/dispersion.h"
 #include "scene/scene.h"
 #include "shared/gpu_types.h"
 
@@ -22,6 +23,9 @@ struct PackedTables {
     // The material of each object's medium (objectMediumMaterials, render_model/medium_materials.h).
     std::vector<std::uint32_t> objectMaterials;
     std::vector<std::int32_t> objectPriorities;  // the priority of each object's medium
+    std::vector<float> objectDispersions;        // the Cauchy B of each object's medium (0: none)
+    // The scene's wavelength samples where some medium disperses, else none.
+    std::vector<WavelengthSample> wavelengths;
 };
 
 PackedTables packTables(const Scene& scene);

@@ -26,6 +26,7 @@ TraceSpecialization TraceSpecialization::forScene(const Scene& scene, const Scen
     s.opaqueContact = f.opaqueContactPossible;
     s.coincidentOpaque = f.coincidentOpaquePossible;
     s.mediumPriorities = f.mediumPriorities;
+    s.dispersion = f.dispersion;
     s.textures = f.textures;
     s.backgroundKind = std::uint32_t(f.background);
     s.fresnelModel = std::uint32_t(scene.settings.fresnel);
@@ -54,6 +55,7 @@ TraceKernelConstants TraceSpecialization::constants() const {
     c[gpu::kConstantOpaqueContact] = opaqueContact ? 1u : 0u;
     c[gpu::kConstantCoincidentOpaque] = coincidentOpaque ? 1u : 0u;
     c[gpu::kConstantMediumPriorities] = mediumPriorities ? 1u : 0u;
+    c[gpu::kConstantDispersion] = dispersion ? 1u : 0u;
     return c;
 }
 
@@ -85,6 +87,7 @@ std::vector<std::string> TraceSpecialization::describe() const {
         std::string("glass on opaque surfaces: ") + onOff(opaqueContact),
         std::string("coincident opaque surfaces: ") + onOff(coincidentOpaque),
         std::string("overlapping media by priority: ") + onOff(mediumPriorities),
+        std::string("dispersion: ") + onOff(dispersion),
         std::string("textures: ") + onOff(textures),
         "background: " + kindName(backgroundKind, backgroundKindName),
         "fresnel: " + kindName(fresnelModel, fresnelModelName),
@@ -105,6 +108,7 @@ nlohmann::json toJson(const TraceSpecialization& s) {
         {"opaque_contact", s.opaqueContact},
         {"coincident_opaque", s.coincidentOpaque},
         {"medium_priorities", s.mediumPriorities},
+        {"dispersion", s.dispersion},
         {"textures", s.textures},
         {"background", kindName(s.backgroundKind, backgroundKindName)},
         {"fresnel", kindName(s.fresnelModel, fresnelModelName)},

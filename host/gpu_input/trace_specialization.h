@@ -32,6 +32,7 @@ struct TraceSpecialization {
     bool opaqueContact = true;  // glass may rest on an opaque surface (SceneFeatures::opaqueContactPossible)
     bool coincidentOpaque = true;  // opaque surfaces of two objects may coincide (coincidentOpaquePossible)
     bool mediumPriorities = true;  // glass media of different priorities (SceneFeatures::mediumPriorities)
+    bool dispersion = true;        // some glass disperses (SceneFeatures::dispersion)
     bool textures = true;
     std::uint32_t backgroundKind = kAnyKind;  // BackgroundKind or kAnyKind
     std::uint32_t fresnelModel = kAnyKind;    // FresnelModel or kAnyKind

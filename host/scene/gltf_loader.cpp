@@ -43,7 +43,8 @@ namespace {
 // The extensions whose meaning vitrum renders (docs/scene-format.md, "glTF 2.0"); a file that
 // requires any other is refused, one that only uses it is read without it, with a warning.
 const std::set<std::string> kReadExtensions = {"KHR_materials_transmission", "KHR_materials_volume",
-                                               "KHR_materials_ior", "KHR_materials_specular", "KHR_lights_punctual"};
+                                               "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_dispersion",
+                                               "KHR_lights_punctual"};
 
 constexpr std::size_t kMaxElementsWithoutView = std::size_t(1) << 24;
 
@@ -497,6 +498,11 @@ private:
                               "thicknessFactor 0), which vitrum does not render: its glass is a closed mesh "
                               "around a medium. Give the material KHR_materials_volume with a thicknessFactor > 0");
             m.model = MaterialModel::Glass;
+            // KHR_materials_dispersion: dispersion = 20 / V_d, 0 for none.
+            if (const tinygltf::Value* dispersion = extension("KHR_materials_dispersion")) {
+                const double value = numberOr(*dispersion, "dispersion", 0.0);
+                if (value > 0.0 && std::isfinite(value)) m.abbe = float(20.0 / value);
+            }
             if (transmissionFactor < 1.0)
                 ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 1)");
             if (base != glm::vec3(1.0f))

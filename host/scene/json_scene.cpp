@@ -17,6 +17,7 @@
 #include "common/input_file.h"
 #include "scene/float_range.h"
 #include "scene/json_lines.h"
+#include "render_model/dispersion.h"
 #include "scene/gltf_loader.h"
 #include "scene/obj_loader.h"
 #include "scene/scene_loader.h"
@@ -195,10 +196,12 @@ private:
 
     RenderSettings settings(const json& v, const std::string& path) const {
         requireObject(v, path);
-        checkKeys(v, path, {"spp", "max_depth", "fresnel", "min_weight", "filter"});
+        checkKeys(v, path, {"spp", "max_depth", "fresnel", "min_weight", "filter", "wavelengths"});
         RenderSettings s;
         if (const json* x = member(v, "spp"))
             s.samplesPerPixel = integer(*x, path + "/spp", 1, int(kMaxSamplesPerPixel));
+        if (const json* x = member(v, "wavelengths"))
+            s.wavelengths = integer(*x, path + "/wavelengths", int(kMinWavelengths), int(kMaxWavelengths));
         if (const json* x = member(v, "max_depth")) s.maxDepth = integer(*x, path + "/max_depth", 0, int(kMaxRayDepth));
         if (const json* x = member(v, "fresnel"))
             s.fresnel = choice<FresnelModel>(*x, path + "/fresnel",

@@ -1,5 +1,6 @@
 #include "scene/mtl_material.h"
 
+#include <cmath>
 #include <string>
 
 #include "common/error.h"
@@ -68,6 +69,15 @@ Material materialFromMtl(const MtlEntry& entry, const std::filesystem::path& mtl
     if (entry.ns) m.shininess = clamped(*entry.ns, "Ns");
     if (entry.tf) m.attenuation = clamped(*entry.tf, "Tf");
     if (entry.priority) m.priority = *entry.priority;
+    if (entry.vd) {
+        // An Abbe number is positive; 0 is how some files say "none" (render-model-decisions.md,
+        // "Dispersion").
+        if (*entry.vd >= 0.0f && std::isfinite(*entry.vd))
+            m.abbe = *entry.vd;
+        else
+            warn(mtlFile.string() + ": material \"" + entry.name + "\" has Vd " + std::to_string(*entry.vd) +
+                 "; no dispersion");
+    }
     if (entry.ni) {
         // Some exporters write Ni 0 for opaque materials; an IOR must be positive for the optics.
         if (*entry.ni > 0.0f)

@@ -109,7 +109,7 @@ private:
             return;
         }
         static constexpr std::string_view kUsedKeys[] = {"Ka", "Kd",    "Ks",     "Tf",     "Ns",
-                                                         "Ni", "illum", "shader", "map_Kd", "priority"};
+                                                         "Ni", "illum", "shader", "map_Kd", "priority", "Vd"};
         if (std::find(std::begin(kUsedKeys), std::end(kUsedKeys), key) == std::end(kUsedKeys)) return;
         if (entries_.empty()) {
             warn(path_.string() + ":" + std::to_string(line_) + ": " + std::string(key) + " before any newmtl ignored");
@@ -130,6 +130,8 @@ private:
             m.ni = scalar(key, words, rest);
         else if (key == "illum")
             m.illum = integer(key, words, rest);
+        else if (key == "Vd")
+            m.vd = scalar(key, words, rest);
         else if (key == "priority")
             m.priority = integer(key, words, rest);
         else if (key == "shader") {

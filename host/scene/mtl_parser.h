@@ -15,7 +15,7 @@ struct MtlEntry {
     std::string name;                         // after `newmtl`
     int line = 0;                             // of the `newmtl` line
     std::optional<glm::vec3> ka, kd, ks, tf;  // as written: sRGB for Ka Kd Ks, linear mu for Tf
-    std::optional<float> ns, ni;
+    std::optional<float> ns, ni, vd;
     std::optional<int> illum, shader, priority;
     int shaderLine = 0;
     std::optional<std::string> mapKd;  // as written, relative to the MTL file

@@ -41,6 +41,9 @@ struct Material {
     // Of a glass: where media overlap, the one of highest priority is the medium (MTL `priority`;
     // docs/render-model-decisions.md, "Overlapping media by priority").
     int priority = 0;
+    // Of a glass: its Abbe number V_d (MTL `Vd`), with `ior` as n_d; 0 for none. Its index then
+    // depends on the wavelength (render_model/dispersion.h).
+    float abbe = 0.0f;
     int diffuseTexture = -1;      // index into Scene::textures, -1 for none
 };
 
@@ -98,6 +101,9 @@ struct RenderSettings {
     FresnelModel fresnel = FresnelModel::Schlick;
     float minWeight = 0.0f;
     TextureFilter filter = TextureFilter::Bilinear;  // mesh textures and environment maps
+    // Wavelength samples a ray splits into where it first meets a dispersive glass
+    // (render_model/dispersion.h); unused without one.
+    std::uint32_t wavelengths = 8;
 };
 
 struct Scene {

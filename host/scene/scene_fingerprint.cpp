@@ -68,6 +68,7 @@ std::uint64_t sceneFingerprint(const Scene& scene) {
         d.add(m.ior);
         d.add(m.attenuation);
         d.add(m.priority);
+        d.add(m.abbe);
         d.add(m.diffuseTexture);
     }
     d.add(scene.textures.size());
@@ -98,6 +99,7 @@ std::uint64_t sceneFingerprint(const Scene& scene) {
     d.add(std::uint32_t(s.fresnel));
     d.add(s.minWeight);
     d.add(std::uint32_t(s.filter));
+    d.add(s.wavelengths);
     d.add(scene.airIor);
     d.add(scene.objectNames.size());  // which triangles make one object is in Triangle::object
     return d.value();

@@ -22,7 +22,9 @@ VITRUM_CONST uint kBindingStates = 10u;
 VITRUM_CONST uint kBindingStats = 11u;
 VITRUM_CONST uint kBindingPendingRays = 12u;
 VITRUM_CONST uint kBindingTraversalStacks = 13u;
-VITRUM_CONST uint kTraceBindingCount = 14u;
+// The wavelength samples of dispersion (render_model/dispersion.h): a read-only texel buffer.
+VITRUM_CONST uint kBindingWavelengths = 14u;
+VITRUM_CONST uint kTraceBindingCount = 15u;
 VITRUM_GPU_END
 
 #endif

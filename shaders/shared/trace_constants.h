@@ -25,7 +25,9 @@ VITRUM_CONST uint kConstantMediumPriorities = 13u;
 VITRUM_CONST uint kConstantResumable = 14u;
 VITRUM_CONST uint kConstantFullSubgroups = 15u;
 VITRUM_CONST uint kConstantPersistentSubgroups = 16u;
-VITRUM_CONST uint kTraceConstantCount = 17u;
+// A scene feature, numbered after the others.
+VITRUM_CONST uint kConstantDispersion = 17u;
+VITRUM_CONST uint kTraceConstantCount = 18u;
 VITRUM_GPU_END
 
 #endif
