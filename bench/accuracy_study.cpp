@@ -547,7 +547,9 @@ int run(int argc, char** argv) {
           "1-spp truth) except for 4 spp, which is measured against the converged truth like the default's total "
           "error in brackets.\n\n"
        << summaryTable(studies) << "\n"
-       << "What the defaults are and why: [render-model-decisions.md](render-model-decisions.md#defaults-and-what-the-study-says).\n";
+       << "What the defaults are and why: [render-model-decisions.md](render-model-decisions.md#defaults-and-what-the-study-says).\n"
+       << "Dispersion's setting, the number of wavelength samples, is studied on its own scenes in "
+          "[wavelengths-vs-time.md](wavelengths-vs-time.md) (`make study-wavelengths`).\n";
     for (const SceneStudy& s : studies) {
         md << "\n## " << s.name << "\n\n"
            << "![" << s.name << ": error against time](study/" << s.name << ".svg)\n\n"
