@@ -5,7 +5,7 @@ JOBS ?= $(shell nproc)
 DEMO_SCENE ?= scenes/demo.json
 BENCH_RUNS ?= 5
 
-.PHONY: all deps drivers configure build demo test clean fuzz fuzz-deps sanitize bench-specialization bench-performance bench-big-models study
+.PHONY: all deps drivers configure build demo test clean fuzz fuzz-deps sanitize bench-specialization bench-performance bench-big-models study study-wavelengths
 
 all: build
 
@@ -77,6 +77,11 @@ STUDY_RUNS ?= 3
 study: build
 	VK_ICD_FILENAMES=$${VK_ICD_FILENAMES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json} \
 	  $(BUILD)/bench/vitrum_study docs --runs $(STUDY_RUNS)
+
+# The study's dispersion setting: wavelength samples against time (docs/wavelengths-vs-time.md).
+study-wavelengths: build
+	VK_ICD_FILENAMES=$${VK_ICD_FILENAMES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json} \
+	  $(BUILD)/bench/vitrum_wavelength_study docs --runs 5 --size 320x240
 
 # Not part of the quick start (docs/testing.md): libFuzzer on the scene and image loaders for
 # FUZZ_SECONDS per target, in its own clang build; and the whole suite under ASan + UBSan.
