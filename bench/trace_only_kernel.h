@@ -3,17 +3,21 @@
 // tree's 8-wide collapse (trace_rays_wide.comp). bench/whitted_bench.cpp times them on the
 // Whitted workload's rays, in the kernel's order and in the order a wavefront renderer would
 // trace them, to measure what the rest of the kernel and such a renderer's trace passes cost
-// against the whole kernel and Embree.
+// against the whole kernel and Embree; bench/ray_query_bench.cpp times the first against a
+// driver's own traversal (ray queries) on the same rays.
 #pragma once
 
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "bvh/bvh_traversal.h"
 #include "cpu/reference_renderer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/gpu_buffer.h"
@@ -104,5 +108,38 @@ private:
     GpuBuffer nodes_, triangles_, rays_, control_, hits_;
     std::uint32_t count_;
 };
+
+// Checks the trace-only kernel's results against vitrum's CPU traversal on every 97th ray:
+// every traversal over, and the same hit or miss, at the same t for closest hits (to the ulps a
+// device's division may add).
+inline void checkTraceOnly(const TraceOnlyKernel& kernel, const std::vector<std::size_t>& order, const Bvh& bvh,
+                           std::span<const gpu::TriangleVertices> triangles, const std::vector<TracedRay>& rays,
+                           const char* file) {
+    std::size_t checked = 0, agree = 0, anyHitDisagreements = 0;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        const glm::vec4& h = kernel.hit(k);
+        if (h.z != 1.0f) throw std::runtime_error(std::string(file) + ": a trace-only traversal did not finish");
+        if (k % 97 != 0 || order[k] == kIdleLane) continue;
+        const TracedRay& r = rays[order[k]];
+        const Ray<float> ray{r.origin, r.direction, r.tMin, r.tMax};
+        ++checked;
+        if (r.anyHit) {
+            const bool same = traceAny<float>(bvh.nodes, triangles, ray) == (h.x >= 0.0f);
+            agree += same;
+            anyHitDisagreements += !same;
+        } else {
+            const auto ours = traceClosest<float>(bvh.nodes, triangles, ray);
+            // The same t to 4 ulps: t divides by the triangle's determinant, which Vulkan lets a
+            // device round to 2.5 ulps (lavapipe rounds it as the CPU does: the same t exactly).
+            agree += ours ? std::abs(h.x - ours->t) <= 4.0f * (std::nextafter(ours->t, INFINITY) - ours->t) : h.x < 0.0f;
+        }
+    }
+    // Where a device divides less exactly, a hit within ulps of a ray's tMin or tMax may fall on
+    // the other side of it: up to 0.5% of the rays (lavapipe: none).
+    if (agree + checked / 200 < checked)
+        throw std::runtime_error(std::string(file) + ": the trace-only kernel disagrees with the CPU traversal on " +
+                                 std::to_string(checked - agree) + " of " + std::to_string(checked) + " rays (" +
+                                 std::to_string(anyHitDisagreements) + " of them any-hit)");
+}
 
 }  // namespace vitrum::bench

@@ -31,6 +31,7 @@
 #include "embree_triangles.h"
 #include "ray_schedules.h"
 #include "trace_only_kernel.h"
+#include "whitted_workload.h"
 #include "bvh/bvh.h"
 #include "bvh/bvh_traversal.h"
 #include "cpu/reference_renderer.h"
@@ -38,20 +39,14 @@
 #include "gpu/vulkan_device.h"
 #include "gpu/vulkan_renderer.h"
 #include "gpu_input/traversal_nodes.h"
-#include "scene/scene_loader.h"
 
 namespace vitrum {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::uint32_t kWidth = 320, kHeight = 240;
-constexpr std::uint32_t kMaxDepth = 10;
-const char* const kScenes[] = {
-    "scenes/course/geospheres_5x5_glass.json", "scenes/demo.json",    "scenes/bubble.json",
-    "scenes/water_glass.json",                 "scenes/prism.json",   "scenes/plastics_green_glass.json",
-    "scenes/diamond.json",
-};
+constexpr std::uint32_t kWidth = bench::kWhittedWidth, kHeight = bench::kWhittedHeight;
+constexpr std::uint32_t kMaxDepth = bench::kWhittedMaxDepth;
 
 // Embree's scene: one triangle geometry, vertices in vitrum's BVH leaf order, Embree's defaults.
 class EmbreeScene {
@@ -131,39 +126,6 @@ std::vector<std::size_t> passOrder(std::span<const TracedRay> rays, bool sorted,
     return order;
 }
 
-// Checks the trace-only kernel's results against vitrum's CPU traversal on every 97th ray:
-// every traversal over, and the same hit or miss, at the same t for closest hits (to the ulps a
-// device's division may add).
-void checkTraceOnly(const bench::TraceOnlyKernel& kernel, const std::vector<std::size_t>& order, const Bvh& bvh,
-                    std::span<const gpu::TriangleVertices> triangles, const std::vector<TracedRay>& rays,
-                    const char* file) {
-    std::size_t checked = 0, agree = 0, anyHitDisagreements = 0;
-    for (std::size_t k = 0; k < order.size(); ++k) {
-        const glm::vec4& h = kernel.hit(k);
-        if (h.z != 1.0f) throw std::runtime_error(std::string(file) + ": a trace-only traversal did not finish");
-        if (k % 97 != 0 || order[k] == bench::kIdleLane) continue;
-        const TracedRay& r = rays[order[k]];
-        const Ray<float> ray{r.origin, r.direction, r.tMin, r.tMax};
-        ++checked;
-        if (r.anyHit) {
-            const bool same = traceAny<float>(bvh.nodes, triangles, ray) == (h.x >= 0.0f);
-            agree += same;
-            anyHitDisagreements += !same;
-        } else {
-            const auto ours = traceClosest<float>(bvh.nodes, triangles, ray);
-            // The same t to 4 ulps: t divides by the triangle's determinant, which Vulkan lets a
-            // device round to 2.5 ulps (lavapipe rounds it as the CPU does: the same t exactly).
-            agree += ours ? std::abs(h.x - ours->t) <= 4.0f * (std::nextafter(ours->t, INFINITY) - ours->t) : h.x < 0.0f;
-        }
-    }
-    // Where a device divides less exactly, a hit within ulps of a ray's tMin or tMax may fall on
-    // the other side of it: up to 0.5% of the rays (lavapipe: none).
-    if (agree + checked / 200 < checked)
-        throw std::runtime_error(std::string(file) + ": the trace-only kernel disagrees with the CPU traversal on " +
-                                 std::to_string(checked - agree) + " of " + std::to_string(checked) + " rays (" +
-                                 std::to_string(anyHitDisagreements) + " of them any-hit)");
-}
-
 // The SIMD groups' iterations over the rays they traced: each invocation of a trace-only kernel
 // writes its group's count, so the first of each group's `lanes` holds it.
 double groupStepsPerRay(const bench::TraceOnlyKernel& kernel, const std::vector<std::size_t>& order,
@@ -199,21 +161,15 @@ int run(int argc, char** argv) {
     TraceKernelCache kernels;  // each scene's kernel created once, not once a render
     std::string rows, fillRows, traceOnlyRows;
     double worstRatio = 1e30, bestRatio = 0, worstAgreement = 1.0;
-    for (const char* file : kScenes) {
-        Scene scene = loadScene(fs::path(VITRUM_SOURCE_DIR) / file);
-        scene.camera.width = kWidth;
-        scene.camera.height = kHeight;
-        scene.settings.maxDepth = kMaxDepth;
-        const Bvh bvh = buildBvh(scene.triangles);
-        const std::vector<gpu::TriangleVertices> triangles = packTriangleVertices(bvh, scene.triangles);
+    for (const char* file : bench::kWhittedScenes) {
+        const bench::WhittedScene workload = bench::loadWhittedScene(fs::path(VITRUM_SOURCE_DIR) / file);
+        const Scene& scene = workload.scene;
+        const Bvh& bvh = workload.bvh;
+        const std::vector<gpu::TriangleVertices>& triangles = workload.triangles;
         std::cerr << file << ": " << std::flush;
 
         // The same rays, from the CPU reference's log, traced by Embree.
-        std::vector<TracedRay> rays;
-        RenderStats cpuStats;
-        ReferenceOptions reference;
-        reference.tracedRays = &rays;
-        renderReference(scene, bvh, reference, cpuStats);
+        const std::vector<TracedRay> rays = bench::whittedRays(workload);
         const EmbreeScene embree(triangles);
         const double agreed = agreement(embree, bvh, triangles, rays);
         worstAgreement = std::min(worstAgreement, agreed);
@@ -252,10 +208,10 @@ int run(int argc, char** argv) {
             const double sortedTime = sorted.trace(device);
             const double wideTime = wide ? wide->trace(device) : 0.0;
             if (r == 0) {
-                checkTraceOnly(scheduled, scheduleOrder, bvh, triangles, rays, file);
-                checkTraceOnly(compacted, compactedOrder, bvh, triangles, rays, file);
-                checkTraceOnly(sorted, sortedOrder, bvh, triangles, rays, file);
-                if (wide) checkTraceOnly(*wide, scheduleOrder, bvh, triangles, rays, file);
+                bench::checkTraceOnly(scheduled, scheduleOrder, bvh, triangles, rays, file);
+                bench::checkTraceOnly(compacted, compactedOrder, bvh, triangles, rays, file);
+                bench::checkTraceOnly(sorted, sortedOrder, bvh, triangles, rays, file);
+                if (wide) bench::checkTraceOnly(*wide, scheduleOrder, bvh, triangles, rays, file);
                 continue;
             }
             scheduledTimes.push_back(scheduledTime);
