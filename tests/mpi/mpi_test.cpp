@@ -83,9 +83,11 @@ TEST_F(Mpi, TheImageIsTheSingleProcessOneBitForBitWithAnyNumberOfRanks) {
         EXPECT_EQ(s["distributed"]["tiles"], 20);
         // The statistics are summed over the ranks: the same rays as one process traced.
         EXPECT_EQ(s["rays"], single["rays"]);
-        // Every tile rank 0 did not render came to it as 12 bytes a pixel.
+        // Every tile rank 0 did not render came to it as 12 bytes a pixel: at least the pixels of
+        // the smallest tile, the corner one of 150 - 4 * 32 by 110 - 3 * 32 (a bound of half a
+        // full tile failed once, when another rank's one tile was an edge tile).
         if (n > 1) {
-            EXPECT_GT(s["distributed"]["bytes_sent"].get<std::uint64_t>(), (20 - tilesOf(s, 0)) * 32 * 32 * 12 / 2);
+            EXPECT_GE(s["distributed"]["bytes_sent"].get<std::uint64_t>(), (20 - tilesOf(s, 0)) * 22 * 14 * 12);
         }
     }
 }
