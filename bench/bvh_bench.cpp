@@ -16,6 +16,7 @@
 #include "bench_support.h"
 #include "bench_terrain.h"
 #include "bvh/bvh.h"
+#include "gpu_input/scene_geometry_bytes.h"
 #include "scene/scene_loader.h"
 #include "shared/gpu_types.h"
 
@@ -32,8 +33,12 @@ void report(const std::string& name, const std::vector<Triangle>& triangles, int
     }
     const double n = double(triangles.size());
     const double t = bench::median(seconds);
-    const double gpuBytes = double((bvh.stats.nodeCount - bvh.stats.leafCount) * sizeof(gpu::TraversalNode)) +
-                            n * double(sizeof(gpu::TriangleVertices) + sizeof(gpu::TriangleShading));
+    // Shading as the renderer lays it out (textures aside: every material untextured).
+    Scene scene;
+    scene.triangles = triangles;
+    for (const Triangle& t : triangles) scene.materials.resize(std::max<std::size_t>(scene.materials.size(), t.material + 1));
+    const SceneGeometryBytes bytes = sceneGeometry(bvh, planShading(scene, bvh));
+    const double gpuBytes = double(bytes.total());
     std::printf("| %s | %zu | %.4f | %.4f | %.1f | %.1f | %u | %u | %.2f | %.1f |\n", name.c_str(), triangles.size(), t,
                 bench::median(allCoresSeconds), t / (n * std::log2(std::max(2.0, n))) * 1e9, n / t * 1e-6,
                 bvh.stats.nodeCount, bvh.stats.maxDepth, bvh.stats.sahCost, gpuBytes / n);

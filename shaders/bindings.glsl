@@ -60,21 +60,27 @@ RenderParams loadRenderParams() {
     return p;
 }
 
-// A triangle's vertex normals (TriangleShading's first three texels).
+// A triangle's vertex normals (gpu_types.h's ShadingTexel): its own texel's, where it is flat.
 mat3 loadVertexNormals(uint i) {
-    uint first = kTriangleShadingTexels * i;
-    return mat3(fetchVec4(shadingTexels, first, 0u).xyz, fetchVec4(shadingTexels, first, 1u).xyz,
-                fetchVec4(shadingTexels, first, 2u).xyz);
+    uvec4 texel = imageLoad(shadingTexels, int(i));
+    if (texel.w == kFlatTriangle) {
+        vec3 n = uintBitsToFloat(texel.xyz);
+        return mat3(n, n, n);
+    }
+    return mat3(fetchVec4(shadingTexels, texel.x, 0u).xyz, fetchVec4(shadingTexels, texel.y, 0u).xyz,
+                fetchVec4(shadingTexels, texel.z, 0u).xyz);
 }
 
-// A triangle's texture coordinates at its three corners (TriangleShading's w components and its
-// last texel).
+// A triangle's texture coordinates at its three corners; zero where its material has no texture,
+// which then reads none.
 void loadCornerUvs(uint i, out vec2 uv0, out vec2 uv1, out vec2 uv2) {
-    uint first = kTriangleShadingTexels * i;
-    vec4 v1uv2 = fetchVec4(shadingTexels, first, 3u);
-    uv0 = vec2(fetchVec4(shadingTexels, first, 0u).w, fetchVec4(shadingTexels, first, 1u).w);
-    uv1 = vec2(fetchVec4(shadingTexels, first, 2u).w, v1uv2.x);
-    uv2 = v1uv2.yz;
+    uint first = imageLoad(shadingTexels, int(i)).w;
+    bool stored = first != kFlatTriangle && first != kNoCornerUvs;
+    vec4 uv0uv1 = stored ? fetchVec4(shadingTexels, first, 0u) : vec4(0.0);
+    vec4 third = stored ? fetchVec4(shadingTexels, first, 1u) : vec4(0.0);
+    uv0 = uv0uv1.xy;
+    uv1 = uv0uv1.zw;
+    uv2 = third.xy;
 }
 
 GpuMaterial loadMaterial(uint i) {

@@ -11,6 +11,7 @@
 #include "common/error.h"
 #include "common/progress.h"
 #include "analysis/scene_features.h"
+#include "gpu_input/scene_geometry_bytes.h"
 #include "gpu_input/trace_specialization.h"
 #include "scene/scene_names.h"
 #include "shared/gpu_types.h"
@@ -102,10 +103,9 @@ int infoCommand(int argc, char** argv, int first) {
     const BvhStats& s = bvh.stats;
     std::printf("bvh: %u nodes, %u leaves, depth %u, at most %u triangles a leaf, SAH cost %.2f, built in %.3f s\n",
                 s.nodeCount, s.leafCount, s.maxDepth, s.maxLeafTriangles, s.sahCost, s.buildSeconds);
+    const SceneGeometryBytes bytes = sceneGeometry(bvh, planShading(scene, bvh));
     std::printf("gpu memory: %.1f bytes per triangle (BVH, vertices, shading)\n",
-                double((bvh.stats.nodeCount - bvh.stats.leafCount) * sizeof(gpu::TraversalNode) +
-                       scene.triangles.size() * (sizeof(gpu::TriangleVertices) + sizeof(gpu::TriangleShading))) /
-                    double(std::max<std::size_t>(1, scene.triangles.size())));
+                double(bytes.total()) / double(std::max<std::size_t>(1, scene.triangles.size())));
     return 0;
 }
 

@@ -24,6 +24,7 @@
 #include "distributed/launch.h"
 #include "distributed/mpi_job.h"
 #include "gpu/gpu_buffer.h"
+#include "gpu/scene_fit.h"
 #include "gpu/tile_buffers.h"
 #include "gpu/tile_size.h"
 #include "gpu/vulkan_device.h"
@@ -59,60 +60,6 @@ std::string largeRenderNote(const Scene& scene) {
                   "at 20 Mrays/s, lavapipe's fastest for primary rays alone, it takes at least %s",
                   primary, c.width, c.height, s.samplesPerPixel, s.maxDepth, time);
     return text;
-}
-
-// Refuses a scene whose GPU buffers would not fit the device, from the scene's counts alone: before
-// the BVH build, the packing and the upload (gpu/vulkan_renderer.cpp makes the buffers, and
-// GpuBuffer checks each again then). The BVH has at most 2n - 1 nodes for n triangles. Without
-// `scene`, the buffers that the triangles alone size: the load checks them as soon as an OBJ's
-// statements tell how many triangles it has, before it makes them (SceneLoadOptions).
-void checkSceneFitsDevice(const VulkanDevice& device, std::size_t triangleCount, const Scene* scene,
-                          const VulkanRenderOptions& options) {
-    const VkDeviceSize triangles = triangleCount;
-    if (triangles > gpu::kMaxTriangles)
-        throw InputError("the scene has " + std::to_string(triangles) + " triangles; the Vulkan backend traces at most " +
-                         std::to_string(gpu::kMaxTriangles));
-    // As gpu/vulkan_renderer.cpp binds them: the scene's geometry and materials as texel buffers.
-    constexpr BufferKind kTexel = BufferKind::Texel, kStorage = BufferKind::Storage;
-    struct Buffer {
-        const char* what;
-        VkDeviceSize bytes;
-        BufferKind kind;
-        bool perTile = false;  // sized by --tile, not by the scene or the image
-    };
-    std::vector<Buffer> buffers{
-        {"BVH nodes", triangles * sizeof(gpu::TraversalNode), kTexel},  // at most triangles - 1 interior nodes
-        {"triangle vertices", triangles * sizeof(gpu::TriangleVertices), kTexel},
-        {"triangle normals and uvs", triangles * sizeof(gpu::TriangleShading), kTexel},
-    };
-    if (scene) {
-        VkDeviceSize texels = 0;
-        for (const Texture& texture : scene->textures) texels += texture.texels.size();
-        buffers.push_back({"materials", scene->materials.size() * sizeof(gpu::GpuMaterial), kTexel});
-        buffers.push_back({"lights", scene->lights.size() * sizeof(gpu::GpuLight), kTexel});
-        // Within the limit: loadScene refused more.
-        buffers.push_back({"texture texels", texels * PixelLimit::kBytesPerPixel, kStorage});
-        // The general kernel's: the scene's analysis, which may need fewer pending rays, comes later.
-        const std::uint32_t tile = tileSizeFor(device.description(), options.tileSize);
-        const glm::uvec2 tilePixels(std::min(tile, scene->camera.width), std::min(tile, scene->camera.height));
-        for (const TileBuffer& buffer : kTileBuffers)
-            buffers.push_back({buffer.what, tileBufferBytes(buffer, tilePixels, gpu::kRayStackSize), kStorage, true});
-    }
-    VkDeviceSize total = 0;
-    for (const auto& buffer : buffers) {
-        if (buffer.bytes > bufferLimit(device, buffer.kind).bytes) {
-            const InputError error = bufferTooLarge(device, buffer.what, buffer.bytes, buffer.kind);
-            if (buffer.perTile) throw InputError(std::string(error.what()) + "; a smaller --tile needs less");
-            throw error;
-        }
-        total += buffer.bytes;
-    }
-    // All of them live in device-local memory (gpu/gpu_buffer.h's MemoryUse) but the tile's pixels.
-    const VkDeviceSize deviceLocal = device.description().deviceLocalBytes;
-    if (deviceLocal > 0 && total > deviceLocal)
-        throw InputError("the scene does not fit the device: its buffers need " + describeBytes(total) +
-                         " in all, but the largest device-local memory heap of " + device.name() + " has " +
-                         describeBytes(deviceLocal));
 }
 
 // What each rank of an MPI job takes of its host, before its device is opened
@@ -192,14 +139,16 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
     loadOptions.camera = command.camera;
     if (device)
         loadOptions.checkTriangles = [&](std::size_t triangles) {
-            checkSceneFitsDevice(*device, triangles, nullptr, command.gpu);
+            checkSceneFitsDevice(*device, triangles, sceneGeometryAtLeast(triangles), nullptr, command.gpu.tileSize);
         };
     Scene scene = loadScene(command.scenePath, loadOptions);
     applyOverrides(command, scene);
     if (const std::string note = largeRenderNote(scene); !note.empty()) warn(note);
     const double loadSeconds = std::chrono::duration<double>(Clock::now() - loadStart).count();
     if (job && device) agreeOnTheImage(*job, *device, scene, command.scenePath, command.gpu);
-    if (device) checkSceneFitsDevice(*device, scene.triangles.size(), &scene, command.gpu);
+    if (device)
+        checkSceneFitsDevice(*device, scene.triangles.size(), sceneGeometryAtLeast(scene.triangles.size()), &scene,
+                             command.gpu.tileSize);
 
     RenderStats stats;
     DistributedReport distributed;

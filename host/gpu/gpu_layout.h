@@ -7,7 +7,7 @@ namespace vitrum::gpu {
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(TraversalNode) == 64);
 static_assert(sizeof(TriangleVertices) == 48);
-static_assert(sizeof(TriangleShading) == 64);
+static_assert(sizeof(ShadingTexel) == 16);
 static_assert(sizeof(GpuMaterial) == 64);
 static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(GpuLight) == 32);
@@ -15,7 +15,6 @@ static_assert(sizeof(RenderParams) == 256);
 static_assert(sizeof(TraversalNode) == 16 * kTraversalNodeTexels);
 static_assert(sizeof(RenderParams) == 16 * kRenderParamsTexels, "bindings.glsl's loadRenderParams reads every field");
 static_assert(sizeof(TriangleVertices) == 16 * kTriangleVerticesTexels);
-static_assert(sizeof(TriangleShading) == 16 * kTriangleShadingTexels);
 static_assert(sizeof(GpuMaterial) == 16 * kGpuMaterialTexels);
 static_assert(sizeof(GpuLight) == 16 * kGpuLightTexels);
 }  // namespace vitrum::gpu

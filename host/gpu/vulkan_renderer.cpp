@@ -7,6 +7,7 @@
 
 #include "gpu/gpu_buffer.h"
 #include "gpu/gpu_layout.h"
+#include "gpu/scene_fit.h"
 #include "gpu/tile_buffers.h"
 #include "gpu/tile_size.h"
 #include "gpu/trace_kernel_cache.h"
@@ -70,8 +71,9 @@ struct TraceBuffers {
 // the image's size is bound by no buffer limit.
 // The arrays a triangle are written into their buffers (packed_scene.h); `rootEntry` is where
 // the traversal begins.
-TraceBuffers makeBuffers(VulkanDevice& device, const Scene& scene, const Bvh& bvh, glm::uvec2 tile,
-                         std::uint32_t pendingRayCapacity, const PhaseCallback& progress, std::uint32_t& rootEntry) {
+TraceBuffers makeBuffers(VulkanDevice& device, const Scene& scene, const Bvh& bvh, const ShadingPlan& shading,
+                         glm::uvec2 tile, std::uint32_t pendingRayCapacity, const PhaseCallback& progress,
+                         std::uint32_t& rootEntry) {
     TraceBuffers b;
     b.owned.reserve(gpu::kTraceBindingCount);  // `bound` points into it
     const gpu::RenderParams noParams{};
@@ -91,9 +93,10 @@ TraceBuffers makeBuffers(VulkanDevice& device, const Scene& scene, const Bvh& bv
                                      device, triangles, "triangle vertices",
                                      [&](std::span<gpu::TriangleVertices> into) { packVertices(scene, bvh, into); }));
     uploaded(2.0 / 3.0);
-    b.add(gpu::kBindingShading, makeTexelBufferWritten<gpu::TriangleShading>(
-                                    device, triangles, "triangle normals and uvs",
-                                    [&](std::span<gpu::TriangleShading> into) { packShading(scene, bvh, into); }));
+    b.add(gpu::kBindingShading,
+          makeTexelBufferWritten<gpu::ShadingTexel>(
+              device, shading.texels(), "triangle normals and uvs",
+              [&](std::span<gpu::ShadingTexel> into) { writeShading(scene, bvh, shading, into); }));
     uploaded(1.0);
     const PackedTables packed = packTables(scene);
     b.add(gpu::kBindingMaterials, makeTexelBuffer(device, spanOf(packed.materials), "materials"));
@@ -285,8 +288,10 @@ void renderVulkanTiles(VulkanDevice& device, const Scene& scene, const Bvh& bvh,
     const TileGrid grid = tileGridFor(device, scene, options);
     stats.tileSize = tileSizeFor(device.description(), options.tileSize);
     std::uint32_t rootEntry = gpu::kLeafEntryFlag;
+    const ShadingPlan shading = planShading(scene, bvh);
+    checkSceneFitsDevice(device, scene.triangles.size(), sceneGeometry(bvh, shading), &scene, options.tileSize);
     const TraceBuffers buffers =
-        makeBuffers(device, scene, bvh, grid.tile, kernel.pendingRayCapacity, options.progress, rootEntry);
+        makeBuffers(device, scene, bvh, shading, grid.tile, kernel.pendingRayCapacity, options.progress, rootEntry);
     stats.stateBytesPerPixel = stateBytesPerPixel(kernel.pendingRayCapacity);
     for (std::uint32_t binding = 0; binding < gpu::kTraceBindingCount; ++binding) {
         const bool perTile = std::any_of(kTileBuffers.begin(), kTileBuffers.end(),

@@ -28,20 +28,6 @@ void packVertices(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleVer
     });
 }
 
-void packShading(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleShading> into) {
-    parallelFor(into.size(), [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
-            const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
-            into[i] = {
-                .n0u0 = glm::vec4(t.normal[0], t.uv[0].x),
-                .n1v0 = glm::vec4(t.normal[1], t.uv[0].y),
-                .n2u1 = glm::vec4(t.normal[2], t.uv[1].x),
-                .v1uv2 = glm::vec4(t.uv[1].y, t.uv[2], 0.0f),
-            };
-        }
-    });
-}
-
 PackedTables packTables(const Scene& scene) {
     PackedTables packed;
     for (const Material& m : scene.materials) {
@@ -78,8 +64,9 @@ PackedScene packScene(const Scene& scene, const Bvh& bvh) {
     PackedScene packed{makeTraversalNodes(bvh.nodes), {}, {}, packTables(scene)};
     packed.vertices.resize(bvh.triangleOrder.size());
     packVertices(scene, bvh, packed.vertices);
-    packed.shading.resize(bvh.triangleOrder.size());
-    packShading(scene, bvh, packed.shading);
+    const ShadingPlan plan = planShading(scene, bvh);
+    packed.shading.resize(plan.texels());
+    writeShading(scene, bvh, plan, packed.shading);
     return packed;
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "gpu_input/shading_texels.h"
 #include "gpu_input/traversal_nodes.h"
 #include "render_model/dispersion.h"
 #include "scene/scene.h"
@@ -30,18 +31,17 @@ struct PackedTables {
 
 PackedTables packTables(const Scene& scene);
 
-// The arrays a triangle, in BVH order (bvh.triangleOrder.size() of each), each written on its own
-// where it is to live, on every core: the renderer writes them into the device's buffers where the
-// host can map them, so that a big model's host memory holds no second copy (112 bytes a triangle,
-// and the BVH nodes', gpu_input/traversal_nodes.h).
+// The triangles' vertices in BVH order (bvh.triangleOrder.size() of them), written where they are
+// to live, on every core: the renderer writes them into the device's buffer where the host can map
+// it, so that a big model's host memory holds no second copy (as the shading texels,
+// gpu_input/shading_texels.h, and the BVH nodes, gpu_input/traversal_nodes.h).
 void packVertices(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleVertices> into);  // with the glass flag
-void packShading(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleShading> into);
 
 // All of it at once (tests, benchmarks).
 struct PackedScene {
     TraversalNodes bvh;
     std::vector<gpu::TriangleVertices> vertices;
-    std::vector<gpu::TriangleShading> shading;
+    std::vector<gpu::ShadingTexel> shading;
     PackedTables tables;
 };
 

@@ -56,15 +56,21 @@ struct TriangleVertices {
     vec4 v2;
 };
 
-// Shading attributes in four texels: the vertex normals n0..n2 (the geometric normal where the
-// file has none) in the first three's xyz, the corners' texture coordinates in the rest:
-// n0u0 = (n0, u0), n1v0 = (n1, v0), n2u1 = (n2, u1), v1uv2 = (v1, u2, v2, -).
-struct TriangleShading {
-    vec4 n0u0;
-    vec4 n1v0;
-    vec4 n2u1;
-    vec4 v1uv2;
+// Shading attributes, in one texel buffer: a texel a triangle (in BVH order), then the scene's
+// distinct vertex normals of the triangles that need them, a texel each (xyz), then the corners'
+// texture coordinates of the triangles whose material has a texture, two texels each
+// (u0 v0 u1 v1, u2 v2 - -). A triangle's texel:
+//   flat (its three vertex normals the same bits, e.g. the geometric normal where the file has
+//   none) and untextured: xyz = that normal's float bits, w = kFlatTriangle;
+//   else: xyz = the texels of its corners' normals, w = its first uv texel, or kNoCornerUvs.
+// A flat triangle takes one texel and a smooth mesh's shared normals are stored once, where
+// four texels a triangle held them all (docs/gpu-design.md, "Shading data by index").
+struct ShadingTexel {
+    uvec4 bits;
 };
+VITRUM_CONST uint kFlatTriangle = 0xFFFFFFFFu;
+VITRUM_CONST uint kNoCornerUvs = 0xFFFFFFFEu;
+VITRUM_CONST uint kCornerUvsTexels = 2u;
 
 // ---- Materials ------------------------------------------------------------------------------
 // Material models, numbered like the course's MTL `shader N` (../shared/docs/render-model.md).
@@ -114,7 +120,6 @@ VITRUM_CONST uint kFresnelSchlickExp2 = 2u;
 VITRUM_CONST uint kTraversalNodeTexels = 4u;
 VITRUM_CONST uint kTraceStateTexels = 16u;  // a pixel's saved state (shaders/suspend.glsl)
 VITRUM_CONST uint kTriangleVerticesTexels = 3u;
-VITRUM_CONST uint kTriangleShadingTexels = 4u;
 VITRUM_CONST uint kGpuMaterialTexels = 4u;
 VITRUM_CONST uint kGpuLightTexels = 2u;
 VITRUM_CONST uint kObjectMediumTexels = 2u;

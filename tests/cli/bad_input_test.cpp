@@ -415,13 +415,34 @@ TEST_F(CliBadInput, AnOutputNamedLikeAFolderIsRefusedBeforeRendering) {
 // ------------------------------------------------------------------------------------ device limits
 
 // VITRUM_MAX_BUFFER_BYTES (for tests only, host/gpu/gpu_buffer.cpp) lowers the storage buffer
-// limit: the scene is refused from its counts, before the BVH build, naming the buffer and the limit.
+// limit: the scene is refused from its counts, before the BVH build, naming the buffer and the
+// limit, where the least any BVH and shading layout take does not fit (gpu_input/scene_geometry_bytes.h);
+// else once the BVH and the shading layout are known, before any buffer is made.
 TEST_F(CliBadInput, SceneTooLargeForTheDeviceIsRefusedEarly) {
-    // The geosphere's 1280 triangles need 80 KiB of BVH nodes at most: the first buffer checked.
+    // The geosphere's 1280 triangles need at least 160 leaves, so 159 interior nodes of 64 bytes:
+    // the first buffer checked.
     expectRefused(kGeosphere + " --width 16 --height 16 --stats " + path("out.json"),
-                  {"does not fit the device", "BVH nodes needs 81920 bytes", "allows 4096 bytes",
+                  {"does not fit the device", "BVH nodes needs 10176 bytes", "allows 4096 bytes",
                    "VITRUM_MAX_BUFFER_BYTES"},
                   "VITRUM_MAX_BUFFER_BYTES=4096");
+    // 2000 textured triangles whose 6000 corners each have a normal of their own: their vertices
+    // (48 bytes a triangle) fit 100000 bytes, and so would the least shading (16 a triangle), but
+    // their shading texels are 2000 + 6000 normals + 2 x 2000 uv texels, 192000 bytes.
+    std::string corners = "mtllib tiny.mtl\nusemtl a\nvt 0 0\n";
+    for (int i = 0; i < 2000; ++i) {
+        corners += "v " + std::to_string(i) + " 0 0\nv " + std::to_string(i) + " 1 0\nv " + std::to_string(i) + ".5 0 1\n";
+        for (int k = 0; k < 3; ++k) corners += "vn 0 " + std::to_string(1e-4 * (3 * i + k)) + " 1\n";
+        const std::string a = std::to_string(3 * i + 1), b = std::to_string(3 * i + 2), c = std::to_string(3 * i + 3);
+        corners += "f " + a + "/1/" + a + " " + b + "/1/" + b + " " + c + "/1/" + c + "\n";
+    }
+    write("corners.obj", corners);
+    write("tiny.pfm", "PF\n2 2\n-1\n" + std::string(2 * 2 * 3 * sizeof(float), '\0'));
+    write("tiny.mtl", "newmtl a\nshader 2\nKd 1 1 1\nmap_Kd tiny.pfm\n");
+    expectRefused(path("corners.obj") + " --width 4 --height 4",
+                  {"does not fit the device", "triangle normals and uvs needs 192000 bytes", "allows 100000 bytes"},
+                  "VITRUM_MAX_BUFFER_BYTES=100000");
+    EXPECT_EQ(vitrum("render " + path("corners.obj") + " --width 4 --height 4 -o " + path("corners.png"),
+                     "VITRUM_MAX_BUFFER_BYTES=200000").exitCode, 0);
     // The geometry fits 1 MB; the buffers of a 256 x 256 tile do not, the first of them its 16-byte
     // pixels. The image's size does not matter (tests/cli/cli_test.cpp), the tile's does.
     expectRefused(kGeosphere + " --width 2000 --height 1000",
@@ -429,7 +450,7 @@ TEST_F(CliBadInput, SceneTooLargeForTheDeviceIsRefusedEarly) {
                   "VITRUM_MAX_BUFFER_BYTES=1000000");
     // An OBJ too large is refused as soon as its statements give its triangles' count, before it
     // makes them (the long part of a big model's load): before the face whose index is out of
-    // range is met. 101 triangles need 6464 bytes of BVH nodes at most.
+    // range is met. 101 triangles need 4848 bytes of vertices.
     std::string strip = "v 0 0 0\nv 0 1 0\n";
     for (int i = 1; i <= 51; ++i) strip += "v " + std::to_string(i) + " 0 0\nv " + std::to_string(i) + " 1 0\n";
     for (int i = 0; i < 50; ++i) {
@@ -438,7 +459,7 @@ TEST_F(CliBadInput, SceneTooLargeForTheDeviceIsRefusedEarly) {
         strip += "f " + std::to_string(a) + " " + std::to_string(a + 3) + " " + std::to_string(a + 1) + "\n";
     }
     write("strip.obj", strip + "f 1 2 999\n");
-    expectRefused(path("strip.obj") + " --width 16 --height 16", {"does not fit the device", "BVH nodes needs 6464 bytes"},
+    expectRefused(path("strip.obj") + " --width 16 --height 16", {"does not fit the device", "triangle vertices needs 4848 bytes"},
                   "VITRUM_MAX_BUFFER_BYTES=4096");
     expectRefused(path("strip.obj") + " --width 16 --height 16", {"uses index 999"});  // where the triangles fit
     // The CPU backend has no such limit.

@@ -1,0 +1,66 @@
+#include "gpu/scene_fit.h"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "common/byte_size.h"
+#include "common/error.h"
+#include "gpu/gpu_buffer.h"
+#include "gpu/tile_buffers.h"
+#include "gpu/tile_size.h"
+#include "image/pixel_limit.h"
+#include "shared/gpu_types.h"
+
+namespace vitrum {
+
+void checkSceneFitsDevice(const VulkanDevice& device, std::size_t triangles, const SceneGeometryBytes& geometry,
+                          const Scene* scene, std::uint32_t tileSize) {
+    const VkDeviceSize triangleCount = triangles;
+    if (triangleCount > gpu::kMaxTriangles)
+        throw InputError("the scene has " + std::to_string(triangleCount) + " triangles; the Vulkan backend traces at most " +
+                         std::to_string(gpu::kMaxTriangles));
+    // As gpu/vulkan_renderer.cpp binds them: the scene's geometry and materials as texel buffers.
+    constexpr BufferKind kTexel = BufferKind::Texel, kStorage = BufferKind::Storage;
+    struct Buffer {
+        const char* what;
+        VkDeviceSize bytes;
+        BufferKind kind;
+        bool perTile = false;  // sized by --tile, not by the scene or the image
+    };
+    std::vector<Buffer> buffers{
+        {"BVH nodes", geometry.nodes, kTexel},
+        {"triangle vertices", geometry.vertices, kTexel},
+        {"triangle normals and uvs", geometry.shading, kTexel},
+    };
+    if (scene) {
+        VkDeviceSize texels = 0;
+        for (const Texture& texture : scene->textures) texels += texture.texels.size();
+        buffers.push_back({"materials", scene->materials.size() * sizeof(gpu::GpuMaterial), kTexel});
+        buffers.push_back({"lights", scene->lights.size() * sizeof(gpu::GpuLight), kTexel});
+        // Within the limit: loadScene refused more.
+        buffers.push_back({"texture texels", texels * PixelLimit::kBytesPerPixel, kStorage});
+        // The general kernel's: the scene's analysis, which may need fewer pending rays, comes later.
+        const std::uint32_t tile = tileSizeFor(device.description(), tileSize);
+        const glm::uvec2 tilePixels(std::min(tile, scene->camera.width), std::min(tile, scene->camera.height));
+        for (const TileBuffer& buffer : kTileBuffers)
+            buffers.push_back({buffer.what, tileBufferBytes(buffer, tilePixels, gpu::kRayStackSize), kStorage, true});
+    }
+    VkDeviceSize total = 0;
+    for (const auto& buffer : buffers) {
+        if (buffer.bytes > bufferLimit(device, buffer.kind).bytes) {
+            const InputError error = bufferTooLarge(device, buffer.what, buffer.bytes, buffer.kind);
+            if (buffer.perTile) throw InputError(std::string(error.what()) + "; a smaller --tile needs less");
+            throw error;
+        }
+        total += buffer.bytes;
+    }
+    // All of them live in device-local memory (gpu/gpu_buffer.h's MemoryUse) but the tile's pixels.
+    const VkDeviceSize deviceLocal = device.description().deviceLocalBytes;
+    if (deviceLocal > 0 && total > deviceLocal)
+        throw InputError("the scene does not fit the device: its buffers need " + describeBytes(total) +
+                         " in all, but the largest device-local memory heap of " + device.name() + " has " +
+                         describeBytes(deviceLocal));
+}
+
+}  // namespace vitrum

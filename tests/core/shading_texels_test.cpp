@@ -1,0 +1,115 @@
+// The shading texels (gpu_input/shading_texels.h, gpu_types.h's ShadingTexel): every triangle's
+// normals and uvs come back with their exact bits from the texels as bindings.glsl reads them, a
+// flat untextured triangle in one texel, each distinct normal stored once.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <vector>
+
+#include "bvh/bvh.h"
+#include "gpu_input/scene_geometry_bytes.h"
+#include "gpu_input/shading_texels.h"
+
+#include "../support/scenes_in_code.h"
+
+namespace vitrum {
+namespace {
+
+using namespace vitrum::testing;
+
+glm::vec3 floats(const glm::uvec4& bits) {
+    return {std::bit_cast<float>(bits.x), std::bit_cast<float>(bits.y), std::bit_cast<float>(bits.z)};
+}
+
+glm::uvec3 bitsOf(const glm::vec3& v) {
+    return {std::bit_cast<std::uint32_t>(v.x), std::bit_cast<std::uint32_t>(v.y), std::bit_cast<std::uint32_t>(v.z)};
+}
+
+// bindings.glsl's loadVertexNormals and loadCornerUvs, on the host.
+struct Decoded {
+    glm::vec3 normal[3];
+    glm::vec2 uv[3];
+};
+Decoded decode(const std::vector<gpu::ShadingTexel>& texels, std::size_t i) {
+    const glm::uvec4 t = texels[i].bits;
+    Decoded d{};
+    for (int k = 0; k < 3; ++k) d.normal[k] = t.w == gpu::kFlatTriangle ? floats(t) : floats(texels[t[k]].bits);
+    if (t.w != gpu::kFlatTriangle && t.w != gpu::kNoCornerUvs) {
+        const glm::vec3 a = floats(texels[t.w].bits);
+        const float a3 = std::bit_cast<float>(texels[t.w].bits.w);
+        const glm::vec3 b = floats(texels[t.w + 1].bits);
+        d.uv[0] = {a.x, a.y};
+        d.uv[1] = {a.z, a3};
+        d.uv[2] = {b.x, b.y};
+    }
+    return d;
+}
+
+// Five triangles far apart along x (so that the BVH reorders them): flat; smooth; smooth, sharing
+// two normals with the one before; flat and textured; "flat" but for a zero's sign.
+Scene mixedShading() {
+    Scene scene;
+    scene.materials = {makeMaterial(MaterialModel::Lambert, glm::vec3(0), glm::vec3(0.5f)),
+                       makeMaterial(MaterialModel::Lambert, glm::vec3(0), glm::vec3(0.5f))};
+    scene.materials[1].diffuseTexture = 0;
+    const glm::vec3 up(0, 0, 1), a(0.6f, 0, 0.8f), b(0, 0.6f, 0.8f), c(-0.6f, 0, 0.8f), d(0, -0.6f, 0.8f);
+    const std::vector<std::array<glm::vec3, 3>> normals = {
+        {up, up, up}, {a, b, c}, {b, c, d}, {a, a, a}, {up, glm::vec3(-0.0f, 0, 1), up}};
+    float x = 0.0f;
+    for (std::size_t i = 0; i < normals.size(); ++i) {
+        Triangle t = makeTriangle(glm::vec3(x, 0, 0), glm::vec3(x + 1, 0, 0), glm::vec3(x, 1, 0), i == 3 ? 1 : 0, 0);
+        for (int k = 0; k < 3; ++k) {
+            t.normal[k] = normals[i][std::size_t(k)];
+            t.uv[k] = glm::vec2(0.25f * float(k) + float(i), 1.0f / float(k + 3));
+        }
+        scene.triangles.push_back(t);
+        x -= 10.0f;
+    }
+    return scene;
+}
+
+TEST(ShadingTexels, EveryTriangleGetsItsNormalsAndUvsBackBitForBit) {
+    const Scene scene = mixedShading();
+    const Bvh bvh = buildBvh(scene.triangles);
+    const ShadingPlan plan = planShading(scene, bvh);
+    // Distinct normals of the triangles not flat and untextured: a, b, c, d; a (the textured
+    // one's); up and -0 up. Uvs for the one textured triangle.
+    EXPECT_EQ(plan.normals.size(), 6u);
+    EXPECT_EQ(plan.texturedTriangles, 1u);
+    EXPECT_EQ(plan.texels(), 5u + 6u + 2u);
+    std::vector<gpu::ShadingTexel> texels(plan.texels());
+    writeShading(scene, bvh, plan, texels);
+    for (std::size_t i = 0; i < bvh.triangleOrder.size(); ++i) {
+        const std::uint32_t original = bvh.triangleOrder[i];
+        const Triangle& t = scene.triangles[original];
+        const Decoded decoded = decode(texels, i);
+        EXPECT_EQ(texels[i].bits.w == gpu::kFlatTriangle, original == 0) << "triangle " << original;
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_EQ(bitsOf(decoded.normal[k]), bitsOf(t.normal[k])) << "triangle " << original << " corner " << k;
+            if (original == 3) EXPECT_EQ(decoded.uv[k], t.uv[k]) << "corner " << k;
+        }
+    }
+}
+
+TEST(ShadingTexels, AFlatUntexturedModelTakesOneTexelATriangle) {
+    Scene scene = mixedShading();
+    scene.triangles.resize(1);
+    for (int i = 1; i < 100; ++i) {
+        Triangle t = scene.triangles[0];
+        for (glm::vec3& p : t.position) p.y += float(i);
+        scene.triangles.push_back(t);
+    }
+    const Bvh bvh = buildBvh(scene.triangles);
+    const ShadingPlan plan = planShading(scene, bvh);
+    EXPECT_TRUE(plan.normals.empty());
+    EXPECT_TRUE(plan.cornerNormals.empty());
+    EXPECT_EQ(plan.texels(), 100u);
+    EXPECT_EQ(sceneGeometry(bvh, plan).shading, 100u * 16u);
+    // The least any layout takes is this one's shading; its BVH is no smaller than the least.
+    EXPECT_EQ(sceneGeometryAtLeast(100).shading, 100u * 16u);
+    EXPECT_LE(sceneGeometryAtLeast(100).nodes, sceneGeometry(bvh, plan).nodes);
+    EXPECT_EQ(sceneGeometryAtLeast(100).nodes, (13u - 1u) * 64u);
+}
+
+}  // namespace
+}  // namespace vitrum
