@@ -2,6 +2,8 @@
 // (assimp-utils) exports course meshes, and `vitrum render` and `vitrum info` take the files as
 // scenes of their own (docs/scene-format.md, "glTF 2.0"), framed automatically.
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <regex>
@@ -96,6 +98,38 @@ TEST_F(GltfCli, CameraOptionPicksTheNamedCamera) {
     const CommandRun notGltf = vitrum("render " + obj + " --camera front -o " + path("obj.png"));
     EXPECT_EQ(notGltf.exitCode, 1);
     EXPECT_NE(notGltf.output.find("--camera picks a camera of a glTF file"), std::string::npos) << notGltf.output;
+}
+
+// The project's glTF scene (scenes/meshes/glass_set.gltf, written by
+// scenes/generate/make_gltf_scene.py; scenes/glass_set.json renders it under a sky, and EveryScene
+// holds that render to the CPU reference) is a scene of its own: its camera, its light, and each
+// glass's KHR_materials_volume as Beer-Lambert mu = -ln(attenuationColor) / attenuationDistance.
+TEST_F(GltfCli, TheProjectsGlassSetIsASceneOfItsOwn) {
+    const std::string gltf = std::string(VITRUM_SOURCE_DIR) + "/scenes/meshes/glass_set.gltf";
+    const CommandRun info = vitrum("info " + gltf);
+    ASSERT_EQ(info.exitCode, 0) << info.output;
+    EXPECT_NE(info.output.find("in 6 objects"), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("lights: 1"), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("camera: from (0, -5.2, 2.6)"), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("glass (refraction, medium stack): yes, 5 objects"), std::string::npos) << info.output;
+    // The file's colours and distances (make_gltf_scene.py), in `info`'s three significant digits.
+    auto mu = [](double colour, double distance) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.3g", -std::log(colour) / distance);
+        return std::string(text);
+    };
+    const std::string green = "Ni 1.52  Tf " + mu(0.3, 0.12) + " " + mu(0.75, 0.12) + " " + mu(0.4, 0.12);
+    const std::string amber = "Ni 1.72  Tf " + mu(0.9, 0.12) + " " + mu(0.55, 0.12) + " " + mu(0.2, 0.12);
+    const std::string water = "Ni 1.33  Tf " + mu(0.55, 0.5) + " " + mu(0.8, 0.5) + " " + mu(0.95, 0.5);
+    for (const std::string& line : {green, amber, water, std::string("Ni 2.42  Tf 0 0 0"), std::string("Ni 1.5  Tf 0 0 0")})
+        EXPECT_NE(info.output.find(line), std::string::npos) << line << "\n" << info.output;
+
+    const std::string png = path("glass_set.png");
+    const CommandRun render = vitrum("render " + gltf + " --width 64 --height 48 -o " + png);
+    ASSERT_EQ(render.exitCode, 0) << render.output;
+    const vitrum::Image image = vitrum::readImage(png);
+    EXPECT_TRUE(std::any_of(image.pixels.begin(), image.pixels.end(),
+                            [&](const glm::vec3& p) { return p != image.pixels.front(); }));
 }
 
 }  // namespace
