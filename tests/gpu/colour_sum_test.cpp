@@ -1,7 +1,8 @@
 // A pixel's colour sum in fixed point (shaders/colour_sum.glsl) on lavapipe through
 // tests/gpu/kernels/colour_sum_test.comp, against the same sums worked out with 64-bit integers here: each
 // term is floor(c * 2^32) of the float c clamped to [0, 4294967040], NaN and negative terms are
-// 0, and a sum past 2^64 - 1 stays at 2^64 - 1.
+// 0, and a sum past 2^64 - 1 stays at 2^64 - 1; signed sums (dispersion's negative channels) are
+// two's complement, a negative term's floor(|c| * 2^32) subtracted, wrapping.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -32,6 +33,7 @@ struct Case {
     std::string what;
     glm::u64vec3 start;
     std::vector<vec3> terms;
+    std::uint32_t flags = 0;  // kColourSumSigned, kColourSumDoubleStart
 };
 
 ColourSumCase toGpu(const Case& c) {
@@ -41,6 +43,7 @@ ColourSumCase toGpu(const Case& c) {
         g.startHigh[k] = std::uint32_t(c.start[k] >> 32);
     }
     g.startLow.w = std::uint32_t(c.terms.size());
+    g.startHigh.w = c.flags;
     for (std::size_t t = 0; t < c.terms.size(); ++t) g.terms[t] = glm::vec4(c.terms[t], 0.0f);
     return g;
 }
@@ -51,6 +54,21 @@ glm::u64vec3 expectedSum(const Case& c) {
         for (int k = 0; k < 3; ++k) sum[k] = saturatingAdd(sum[k], termOf(term[k]));
     return sum;
 }
+
+// A signed case's sum: unsigned 64-bit arithmetic wraps as two's complement does.
+glm::u64vec3 expectedSignedSum(const Case& c) {
+    glm::u64vec3 sum = c.start;
+    if (c.flags & gpu::kColourSumDoubleStart) sum += sum;
+    for (const vec3& term : c.terms)
+        for (int k = 0; k < 3; ++k) {
+            const float magnitude = std::isnan(term[k]) ? 0.0f : std::fabs(term[k]);
+            if (term[k] < 0.0f) sum[k] -= termOf(magnitude);
+            else sum[k] += termOf(magnitude);
+        }
+    return sum;
+}
+
+double signedValue(std::uint64_t sum) { return std::ldexp(double(std::int64_t(sum)), -32); }
 
 std::vector<ColourSumResult> evaluate(const std::vector<Case>& cases) {
     std::vector<ColourSumCase> gpuCases;
@@ -112,6 +130,42 @@ TEST(GlslColourSum, GivesBackTheColourItHolds) {
     EXPECT_NEAR(exact, double(0.1f) + double(0.2f) + double(1e-5f) + 3.0, 4.0 / 4294967296.0);  // < 2^-32 a term
     // Half an ulp of 3.3 (1.2e-7) and the low word's rounding to float (0.3 * 2^-24).
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(results[1].colour[k], exact, 1.2e-7 + 1.8e-8);
+}
+
+// With dispersion a round's colour may be negative in a channel (render-model-decisions.md,
+// "Dispersion"): the signed sum subtracts it, comes back negative where the sum is, and keeps the
+// order of terms out of the result as the unsigned one does.
+TEST(GlslColourSum, SignedSumsSubtractNegativeTermsInTwosComplement) {
+    const std::uint32_t s = gpu::kColourSumSigned;
+    const std::uint64_t minusOneAndAHalf = ~((std::uint64_t(3) << 31)) + 1;  // -1.5 in 32.32 fixed point
+    const std::vector<Case> cases = {
+        {"a negative term under a positive sum", {0, 0, 0}, {vec3(0.75f, 0.5f, 2.0f), vec3(-0.25f, -1.5f, -2.0f)}, s},
+        {"negative sums", {0, 0, 0}, {vec3(-3.5f, -1e-3f, -1234.5f), vec3(-0.5f, 0.0f, 0.25f)}, s},
+        {"the same terms in the opposite order", {0, 0, 0}, {vec3(-0.5f, 0.0f, 0.25f), vec3(-3.5f, -1e-3f, -1234.5f)}, s},
+        {"NaN adds nothing, an infinite term is clamped, -0 subtracts nothing", {5, 6, 7},
+         {vec3(kNaN, -kInf, -0.0f), vec3(kInf, 0.0f, kNaN)}, s},
+        {"sums of sums wrap", {minusOneAndAHalf, 1, minusOneAndAHalf}, {vec3(1.0f, -1e-9f, 3.0f)},
+         s | gpu::kColourSumDoubleStart},
+    };
+    const std::vector<ColourSumResult> results = evaluate(cases);
+    ASSERT_EQ(results.size(), cases.size());
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const glm::u64vec3 expected = expectedSignedSum(cases[i]);
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_EQ(sumOf(results[i])[k], expected[k]) << cases[i].what << ", channel " << k;
+            // Back to a float: exact where the sum is, else within the float's half ulp.
+            const double value = signedValue(expected[k]);
+            EXPECT_NEAR(results[i].colour[k], value, std::fabs(value) * 6e-8 + 1e-9) << cases[i].what << ", channel " << k;
+        }
+    }
+    // The worked examples: 0.75 - 0.25 = 0.5, 0.5 - 1.5 = -1, 2 - 2 = 0; -3.5 - 0.5 = -4 exactly.
+    EXPECT_EQ(vec3(results[0].colour), vec3(0.5f, -1.0f, 0.0f));
+    EXPECT_EQ(results[1].colour.x, -4.0f);
+    EXPECT_EQ(results[1].colour.z, -1234.25f);
+    EXPECT_EQ(sumOf(results[1]), sumOf(results[2]));
+    // (-1.5) + (-1.5) + 1 = -2: the doubled start wrapped past zero and back.
+    EXPECT_EQ(results[4].colour.x, -2.0f);
+    EXPECT_EQ(results[4].colour.z, 0.0f);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #version 460
 // Test kernel for shaders/colour_sum.glsl: one invocation adds one ColourSumCase's terms, in
-// order, to its starting sum.
+// order, to its starting sum, unsigned or signed as the case says.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/gpu_types.h"
@@ -19,8 +19,13 @@ void main() {
     ColourSumCase c = cases[i];
     ColourSum sum = ColourSum(c.startLow.xyz, c.startHigh.xyz);
     uint terms = min(c.startLow.w, 4u);
-    for (uint t = 0u; t < terms; ++t) addColour(sum, c.terms[t].xyz);
+    bool signedSum = (c.startHigh.w & kColourSumSigned) != 0u;
+    if ((c.startHigh.w & kColourSumDoubleStart) != 0u) addSignedColourSums(sum, sum);
+    for (uint t = 0u; t < terms; ++t) {
+        if (signedSum) addSignedColour(sum, c.terms[t].xyz);
+        else addColour(sum, c.terms[t].xyz);
+    }
     results[i].low = uvec4(sum.low, 0u);
     results[i].high = uvec4(sum.high, 0u);
-    results[i].colour = vec4(colourOfSum(sum), 0.0);
+    results[i].colour = vec4(signedSum ? colourOfSignedSum(sum) : colourOfSum(sum), 0.0);
 }

@@ -11,15 +11,19 @@ namespace vitrum::gpu {
 
 struct ColourSumCase {
     uvec4 startLow;   // the sum to start from: .xyz = low words, .w = how many terms follow (0..4)
-    uvec4 startHigh;  // .xyz = high words
+    uvec4 startHigh;  // .xyz = high words; .w = kColourSumSigned: signed sums (addSignedColour),
+                      // | kColourSumDoubleStart: first the start added to itself (addSignedColourSums)
     vec4 terms[4];    // .xyz = colours added in this order; .w unused
 };
 
 struct ColourSumResult {
     uvec4 low;    // .xyz
     uvec4 high;   // .xyz
-    vec4 colour;  // .xyz = colourOfSum
+    vec4 colour;  // .xyz = colourOfSum, or colourOfSignedSum for a signed case
 };
+
+VITRUM_CONST uint kColourSumSigned = 1u;
+VITRUM_CONST uint kColourSumDoubleStart = 2u;
 
 VITRUM_CONST uint kColourSumTestGroupSize = 64u;  // local_size_x of colour_sum_test.comp
 
