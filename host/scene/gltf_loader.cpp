@@ -44,7 +44,7 @@ namespace {
 // requires any other is refused, one that only uses it is read without it, with a warning.
 const std::set<std::string> kReadExtensions = {"KHR_materials_transmission", "KHR_materials_volume",
                                                "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_dispersion",
-                                               "KHR_lights_punctual"};
+                                               "KHR_lights_punctual", "KHR_texture_transform"};
 
 constexpr std::size_t kMaxElementsWithoutView = std::size_t(1) << 24;
 
@@ -406,6 +406,8 @@ private:
                 warnAbout(where + " has " + std::to_string(corners.size()) + " corners, not a multiple of 3: the last " +
                           std::to_string(corners.size() % 3) + " ignored");
             const std::uint32_t material = primitive.material >= 0 ? materialIndex(primitive.material) : defaultMaterial();
+            const auto transformed = uvTransforms_.find(primitive.material);
+            const glm::dmat3* uvTransform = transformed != uvTransforms_.end() ? &transformed->second : nullptr;
             scene_.triangles.reserve(scene_.triangles.size() + corners.size() / 3);
             for (std::size_t k = 0; k + 2 < corners.size(); k += 3) {
                 std::size_t c[3] = {corners[k], corners[k + 1], corners[k + 2]};
@@ -420,8 +422,11 @@ private:
                         !std::isfinite(t.position[i].z))
                         fail(where + ": vertex " + std::to_string(c[i]) + " is not finite after its transform");
                     // glTF's v runs down the image from its top row, vitrum's up from the bottom.
-                    t.uv[i] = uvs.empty() ? glm::vec2(0.0f)
-                                          : glm::vec2(float(uvs[2 * c[i]]), 1.0f - float(uvs[2 * c[i] + 1]));
+                    if (!uvs.empty()) {
+                        glm::vec2 uv(float(uvs[2 * c[i]]), float(uvs[2 * c[i] + 1]));
+                        if (uvTransform) uv = glm::vec2(*uvTransform * glm::dvec3(glm::dvec2(uvs[2 * c[i]], uvs[2 * c[i] + 1]), 1.0));
+                        t.uv[i] = glm::vec2(uv.x, 1.0f - uv.y);
+                    }
                 }
                 glm::vec3 geometric = glm::cross(t.position[1] - t.position[0], t.position[2] - t.position[0]);
                 const float length = glm::length(geometric);
@@ -530,7 +535,7 @@ private:
             // No specular layer at all (KHR_materials_specular): the diffuse base alone, Lambert.
             m.model = MaterialModel::Lambert;
             m.diffuse = base;
-            if (pbr.baseColorTexture.index >= 0) m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, quoted, ignored);
+            if (pbr.baseColorTexture.index >= 0) m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, index, quoted, ignored);
         } else {
             m.model = MaterialModel::Phong;
             m.diffuse = base;
@@ -554,7 +559,7 @@ private:
             m.shininess = alpha > 0.0 ? float(std::clamp(2.0 / (alpha * alpha) - 2.0, 1.0, 10000.0)) : 10000.0f;
             if (pbr.metallicFactor > 0.0) ignored.push_back("metallicFactor " + std::to_string(pbr.metallicFactor) + " (rendered as 0)");
             if (transmissionFactor > 0.0) ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 0)");
-            if (pbr.baseColorTexture.index >= 0) m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, quoted, ignored);
+            if (pbr.baseColorTexture.index >= 0) m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, index, quoted, ignored);
         }
         if (pbr.metallicRoughnessTexture.index >= 0) ignored.push_back("metallicRoughnessTexture");
         if (g.normalTexture.index >= 0) ignored.push_back("normalTexture");
@@ -575,10 +580,20 @@ private:
 
     // The render model's opaque diffuse colour is the texel alone (Kd or map_Kd): a factor other
     // than white is multiplied into a copy of the image, one per image and factor.
-    int baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3 factor, const std::string& quoted,
+    // KHR_texture_transform moves its coordinates (uvTransforms_, applied as the material's
+    // triangles are made).
+    int baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3 factor, int material, const std::string& quoted,
                          std::vector<std::string>& ignored) {
-        if (info.texCoord != 0) ignored.push_back("baseColorTexture's TEXCOORD_" + std::to_string(info.texCoord) + " (TEXCOORD_0 used)");
-        for (const auto& [key, value] : info.extensions) ignored.push_back("baseColorTexture's " + key);
+        int texCoord = info.texCoord;
+        for (const auto& [key, value] : info.extensions) {
+            if (key != "KHR_texture_transform") {
+                ignored.push_back("baseColorTexture's " + key);
+                continue;
+            }
+            uvTransforms_[material] = textureTransform(value, quoted);
+            if (value.Has("texCoord") && value.Get("texCoord").IsNumber()) texCoord = value.Get("texCoord").GetNumberAsInt();
+        }
+        if (texCoord != 0) ignored.push_back("baseColorTexture's TEXCOORD_" + std::to_string(texCoord) + " (TEXCOORD_0 used)");
         if (std::size_t(info.index) >= model_.textures.size()) fail(quoted + " names a texture that does not exist");
         const int source = model_.textures[std::size_t(info.index)].source;
         if (source < 0 || std::size_t(source) >= model_.images.size()) {
@@ -604,6 +619,33 @@ private:
             warnAbout(quoted + ": texture cannot be read (" + std::string(e.what()) + "); using baseColorFactor");
         }
         return textures_[key] = index;
+    }
+
+    // KHR_texture_transform: uv' = T R S uv in glTF's texture coordinates (v down), with T the
+    // offset, R the rotation (radians, counter-clockwise seen on the image) and S the scale, as the
+    // extension's specification writes the matrix.
+    glm::dmat3 textureTransform(const tinygltf::Value& transform, const std::string& quoted) {
+        auto pair = [&](const char* key, glm::dvec2 fallback) {
+            const tinygltf::Value& v = transform.Get(key);
+            if (!transform.Has(key)) return fallback;
+            if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+                fail(quoted + ": KHR_texture_transform's " + key + " is not two numbers");
+            return glm::dvec2(v.Get(0).GetNumberAsDouble(), v.Get(1).GetNumberAsDouble());
+        };
+        const glm::dvec2 offset = pair("offset", glm::dvec2(0.0)), scale = pair("scale", glm::dvec2(1.0));
+        double rotation = 0.0;
+        if (transform.Has("rotation")) {
+            if (!transform.Get("rotation").IsNumber()) fail(quoted + ": KHR_texture_transform's rotation is not a number");
+            rotation = transform.Get("rotation").GetNumberAsDouble();
+        }
+        if (!std::isfinite(offset.x + offset.y + scale.x + scale.y + rotation))
+            fail(quoted + ": KHR_texture_transform has a number that is not finite");
+        const double c = std::cos(rotation), s = std::sin(rotation);
+        // Column-major: the specification's rows (1 0 ox; 0 1 oy), (c s 0; -s c 0), (sx 0; 0 sy).
+        const glm::dmat3 t(1, 0, 0, 0, 1, 0, offset.x, offset.y, 1);
+        const glm::dmat3 r(c, -s, 0, s, c, 0, 0, 0, 1);
+        const glm::dmat3 sc(scale.x, 0, 0, 0, scale.y, 0, 0, 0, 1);
+        return t * r * sc;
     }
 
     // A relative URI as a path: percent-escapes decoded (RFC 3986), '/' as separator.
@@ -706,6 +748,7 @@ private:
     GltfOptions options_;
     tinygltf::Model model_;
     std::map<int, std::uint32_t> materials_;
+    std::map<int, glm::dmat3> uvTransforms_;  // by glTF material: its baseColorTexture's KHR_texture_transform
     std::map<std::tuple<int, float, float, float>, int> textures_;
     std::optional<std::uint32_t> defaultMaterial_;
     std::size_t trianglesToMake_ = 0, trianglesMade_ = 0;

@@ -317,6 +317,45 @@ TEST_F(GltfLoader, BaseColourFactorMultipliesItsEmbeddedTexture) {
     EXPECT_EQ(scene.triangles[0].uv[2], glm::vec2(0, 0));
 }
 
+// KHR_texture_transform on the base colour texture: uv' = T R S uv with the specification's
+// matrices, rows (1 0 ox; 0 1 oy), (cos sin 0; -sin cos 0), (sx 0; 0 sy), in glTF's coordinates
+// (v down); vitrum's v is then 1 - v'. A material without it keeps its coordinates.
+TEST_F(GltfLoader, TextureTransformMovesTheBaseColourCoordinates) {
+    Image image(1, 1);
+    writeImage(image, dir_ / "texel.png");
+    std::ifstream file(dir_ / "texel.png", std::ios::binary);
+    const std::vector<unsigned char> png{std::istreambuf_iterator<char>(file), {}};
+    GltfBuilder b;
+    b.doc()["images"] = json::array({{{"uri", "data:image/png;base64," + base64(png)}}});
+    b.doc()["textures"] = json::array({{{"source", 0}}});
+    b.doc()["extensionsUsed"] = json::array({"KHR_texture_transform"});
+    const std::vector<float> uv = {0.25f, 0.5f, 1.0f, 0.0f, 0.0f, 1.0f};
+    const int uvs = b.accessor(uv, 5126, "VEC2", 3);
+    const int positions = b.positions(kTriangle);
+    const double ox = 0.5, oy = 0.25, angle = 0.3, sx = 2.0, sy = 3.0;
+    const json transform = {{"offset", {ox, oy}}, {"rotation", angle}, {"scale", {sx, sy}}};
+    for (bool transformed : {false, true}) {
+        json texture = {{"index", 0}};
+        if (transformed) texture["extensions"] = {{"KHR_texture_transform", transform}};
+        const int material =
+            b.material({{"pbrMetallicRoughness", {{"baseColorTexture", texture}, {"metallicFactor", 0.0}}}});
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", positions}, {"TEXCOORD_0", uvs}}}, {"material", material}})}});
+    }
+    ::testing::internal::CaptureStderr();
+    Scene scene = load(b.write(dir_ / "transformed.gltf"));
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(warnings.find("KHR_texture_transform"), std::string::npos) << warnings;
+    ASSERT_EQ(scene.triangles.size(), 2u);
+    const double c = std::cos(angle), s = std::sin(angle);
+    for (int i = 0; i < 3; ++i) {
+        const double u = uv[std::size_t(2 * i)], v = uv[std::size_t(2 * i + 1)];
+        EXPECT_EQ(scene.triangles[0].uv[i], glm::vec2(float(u), 1.0f - float(v)));
+        const double u2 = c * sx * u + s * sy * v + ox, v2 = -s * sx * u + c * sy * v + oy;
+        EXPECT_NEAR(scene.triangles[1].uv[i].x, u2, 1e-6) << "corner " << i;
+        EXPECT_NEAR(scene.triangles[1].uv[i].y, 1.0 - v2, 1e-6) << "corner " << i;
+    }
+}
+
 // Thin-walled transmission has no inside (KHR_materials_volume: no extension, or thicknessFactor
 // 0): it is refused, never rendered as a solid.
 TEST_F(GltfLoader, ThinWalledGlassIsRefused) {
