@@ -44,7 +44,8 @@ namespace {
 // requires any other is refused, one that only uses it is read without it, with a warning.
 const std::set<std::string> kReadExtensions = {"KHR_materials_transmission", "KHR_materials_volume",
                                                "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_dispersion",
-                                               "KHR_lights_punctual", "KHR_texture_transform"};
+                                               "KHR_lights_punctual", "KHR_texture_transform",
+                                               "KHR_materials_pbrSpecularGlossiness"};
 
 constexpr std::size_t kMaxElementsWithoutView = std::size_t(1) << 24;
 
@@ -524,6 +525,9 @@ private:
                     m.attenuation[i] = float(-std::log(std::clamp(colour[i], double(std::numeric_limits<float>::min()), 1.0)) / distance);
             }
             if (pbr.baseColorTexture.index >= 0) ignored.push_back("baseColorTexture");
+            if (extension("KHR_materials_pbrSpecularGlossiness")) ignored.push_back("KHR_materials_pbrSpecularGlossiness");
+        } else if (const tinygltf::Value* specularGlossiness = extension("KHR_materials_pbrSpecularGlossiness")) {
+            specularGlossinessMaterial(*specularGlossiness, index, quoted, m, ignored);
         } else if (pbr.metallicFactor >= 0.5) {
             m.model = MaterialModel::Mirror;
             m.specular = base;
@@ -576,6 +580,49 @@ private:
             warnAbout(quoted + ": ignored: " + list);
         }
         return m;
+    }
+
+    // KHR_materials_pbrSpecularGlossiness (archived, but what assimp writes), which replaces the
+    // metallic-roughness model where present: the opaque dielectric with Kd = diffuseFactor (times
+    // diffuseTexture), Ks = specularFactor (the reflectance at normal incidence, the highlight's
+    // peak) and Ns from roughness = 1 - glossinessFactor as the metallic-roughness mapping takes it;
+    // Lambert where specularFactor is 0 (no specular layer).
+    void specularGlossinessMaterial(const tinygltf::Value& sg, int index, const std::string& quoted, Material& m,
+                                    std::vector<std::string>& ignored) {
+        auto factor = [&](const char* key, int count, glm::vec4 fallback) {
+            const tinygltf::Value& v = sg.Get(key);
+            if (!sg.Has(key)) return fallback;
+            if (!v.IsArray() || v.ArrayLen() != std::size_t(count))
+                fail(quoted + ": KHR_materials_pbrSpecularGlossiness's " + key + " is not " + std::to_string(count) + " numbers");
+            glm::vec4 out = fallback;
+            for (int i = 0; i < count; ++i) {
+                if (!v.Get(i).IsNumber()) fail(quoted + ": KHR_materials_pbrSpecularGlossiness's " + key + " is not numbers");
+                out[i] = float(std::clamp(v.Get(i).GetNumberAsDouble(), 0.0, 1.0));
+            }
+            return out;
+        };
+        const glm::vec3 diffuse(factor("diffuseFactor", 4, glm::vec4(1.0f)));
+        const glm::vec3 specular(factor("specularFactor", 3, glm::vec4(1.0f)));
+        const double glossiness = std::clamp(numberOr(sg, "glossinessFactor", 1.0), 0.0, 1.0);
+        m.diffuse = diffuse;
+        if (specular == glm::vec3(0.0f)) {
+            m.model = MaterialModel::Lambert;
+        } else {
+            m.model = MaterialModel::Phong;
+            m.specular = specular;
+            const double roughness = 1.0 - glossiness, alpha = roughness * roughness;
+            m.shininess = alpha > 0.0 ? float(std::clamp(2.0 / (alpha * alpha) - 2.0, 1.0, 10000.0)) : 10000.0f;
+        }
+        if (sg.Has("diffuseTexture")) {
+            const tinygltf::Value& t = sg.Get("diffuseTexture");
+            tinygltf::TextureInfo info;
+            info.index = t.Has("index") && t.Get("index").IsNumber() ? t.Get("index").GetNumberAsInt() : -1;
+            info.texCoord = t.Has("texCoord") && t.Get("texCoord").IsNumber() ? t.Get("texCoord").GetNumberAsInt() : 0;
+            if (t.Has("extensions") && t.Get("extensions").IsObject())
+                for (const std::string& key : t.Get("extensions").Keys()) info.extensions[key] = t.Get("extensions").Get(key);
+            m.diffuseTexture = baseColorTexture(info, diffuse, index, quoted, ignored);
+        }
+        if (sg.Has("specularGlossinessTexture")) ignored.push_back("specularGlossinessTexture");
     }
 
     // The render model's opaque diffuse colour is the texel alone (Kd or map_Kd): a factor other

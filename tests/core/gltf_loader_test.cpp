@@ -356,6 +356,37 @@ TEST_F(GltfLoader, TextureTransformMovesTheBaseColourCoordinates) {
     }
 }
 
+// KHR_materials_pbrSpecularGlossiness (what assimp writes) replaces the metallic-roughness model:
+// Kd = diffuseFactor, Ks = specularFactor, Ns = 2 / alpha^2 - 2 with alpha = (1 - glossiness)^2,
+// Lambert without a specular layer; a glass keeps its transmission.
+TEST_F(GltfLoader, SpecularGlossinessMaterialsMapOntoPhongAndLambert) {
+    GltfBuilder b;
+    const int positions = b.positions(kTriangle);
+    const json sg = {{"diffuseFactor", {0.8, 0.2, 0.1, 1.0}}, {"specularFactor", {0.5, 0.25, 0.5}}, {"glossinessFactor", 0.75}};
+    const json lambert = {{"diffuseFactor", {0.3, 0.6, 0.9, 1.0}}, {"specularFactor", {0.0, 0.0, 0.0}}, {"glossinessFactor", 0.032}};
+    const std::vector<json> materials = {
+        // metallic 1 in the fallback: the extension rules, not the mirror.
+        {{"pbrMetallicRoughness", {{"metallicFactor", 1.0}}}, {"extensions", {{"KHR_materials_pbrSpecularGlossiness", sg}}}},
+        {{"extensions", {{"KHR_materials_pbrSpecularGlossiness", lambert}}}},
+        {{"extensions", {{"KHR_materials_pbrSpecularGlossiness", sg},
+                         {"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                         {"KHR_materials_volume", {{"thicknessFactor", 1.0}}}}}},
+    };
+    for (const json& material : materials)
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", positions}}}, {"material", b.material(material)}})}});
+    Scene scene = load(b.write(dir_ / "specular_glossiness.gltf"));
+    ASSERT_EQ(scene.materials.size(), 3u);
+    const Material& phong = scene.materials[0];
+    EXPECT_EQ(phong.model, MaterialModel::Phong);
+    EXPECT_EQ(phong.diffuse, glm::vec3(0.8f, 0.2f, 0.1f));
+    EXPECT_EQ(phong.specular, glm::vec3(0.5f, 0.25f, 0.5f));
+    const double alpha = 0.25 * 0.25;
+    EXPECT_NEAR(phong.shininess, 2.0 / (alpha * alpha) - 2.0, 1e-3);  // 510
+    EXPECT_EQ(scene.materials[1].model, MaterialModel::Lambert);
+    EXPECT_EQ(scene.materials[1].diffuse, glm::vec3(0.3f, 0.6f, 0.9f));
+    EXPECT_EQ(scene.materials[2].model, MaterialModel::Glass);
+}
+
 // Thin-walled transmission has no inside (KHR_materials_volume: no extension, or thicknessFactor
 // 0): it is refused, never rendered as a solid.
 TEST_F(GltfLoader, ThinWalledGlassIsRefused) {
