@@ -424,7 +424,7 @@ private:
                         fail(where + ": vertex " + std::to_string(c[i]) + " is not finite after its transform");
                     // glTF's v runs down the image from its top row, vitrum's up from the bottom.
                     if (!uvs.empty()) {
-                        glm::vec2 uv(float(uvs[2 * c[i]]), float(uvs[2 * c[i] + 1]));
+                        glm::vec2 uv = glm::vec2(float(uvs[2 * c[i]]), float(uvs[2 * c[i] + 1]));
                         if (uvTransform) uv = glm::vec2(*uvTransform * glm::dvec3(glm::dvec2(uvs[2 * c[i]], uvs[2 * c[i] + 1]), 1.0));
                         t.uv[i] = glm::vec2(uv.x, 1.0f - uv.y);
                     }
