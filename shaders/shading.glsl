@@ -63,6 +63,19 @@ void startWaitingWavelength() {
     st.ray.weight.xyz *= wavelengthSample(code - 1u).xyz;
 }
 
+// Whether a white ray at a glass hit on `object` crosses a touching glass whose medium disperses
+// there (it enters or leaves that medium at this hit): then it splits as at the dispersive glass
+// itself (render-model-decisions.md, "Dispersion"). The touching glass is what finishTrace selects.
+bool touchingGlassDisperses(uint object) {
+    if (!kTouchingProbe || !touchingProbeOn() || wavelengthCode(st.ray) != 0u || wavelengthCount() == 0u) return false;
+    float farthest = st.traversal.tMax;
+    uvec4 touching = selectTouching(st.candidates.touchingObjects, st.candidates.touchingT,
+                                    st.traversal.tMax + touchingDistance(), object, farthest);
+    uvec3 objects = touching.xyz & 0x7FFFFFFFu;
+    return (touching.w > 0u && objectDispersion(objects.x) != 0.0) || (touching.w > 1u && objectDispersion(objects.y) != 0.0) ||
+           (touching.w > 2u && objectDispersion(objects.z) != 0.0);
+}
+
 // The closest-hit traversal of st.ray is over: record the hit (triangle `tri`, material `m`, both
 // read by traceUnit) or take the background.
 void finishTrace(TriangleVertices tri, GpuMaterial m) {
@@ -81,7 +94,7 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
         return;
     }
     if (kDispersion && usesMaterial(kMaterialGlass) && materialModel(m) == kMaterialGlass &&
-        splitsAt(st.ray, floatBitsToUint(tri.v1.w))) {
+        (splitsAt(st.ray, floatBitsToUint(tri.v1.w)) || touchingGlassDisperses(floatBitsToUint(tri.v1.w)))) {
         splitIntoWavelengths();
         return;
     }

@@ -165,7 +165,7 @@ private:
             return escaped;
         }
         const Hit hit = describeHit(*found, d);
-        if (sample == kWhite && splitsHere(hit, media)) {
+        if (sample == kWhite && splitsHere(hit, origin, d, media)) {
             // A white ray meeting a dispersive glass splits into its wavelength samples, each
             // traced again from this ray's origin with its share of the weight, as the GPU does
             // (render-model-decisions.md, "Dispersion").
@@ -517,11 +517,21 @@ private:
         return Real(nd) + Real(mediumDispersion_[object]) * Real(samples_[std::size_t(sample)].offset);
     }
 
-    // Whether a white ray splits at `hit`: a glass hit where the object's medium or the medium
-    // the ray is in disperses.
-    bool splitsHere(const Hit& hit, const MediumStack& media) const {
+    // Whether a white ray splits at `hit`: a glass hit where the object's medium, the medium the
+    // ray is in, or the medium of a glass touching the hit where the ray crosses it (which the ray
+    // enters or leaves there) disperses. The probe for touching glass is not counted: the GPU
+    // finds the same surfaces during its traversal.
+    bool splitsHere(const Hit& hit, const Vec3& rayOrigin, const Vec3& d, const MediumStack& media) const {
         if (samples_.empty() || hit.material->model != MaterialModel::Glass) return false;
-        return mediumDispersion_[hit.object] != 0.0f || (!media.empty() && mediumDispersion_[media[ruling(media)]] != 0.0f);
+        if (mediumDispersion_[hit.object] != 0.0f || (!media.empty() && mediumDispersion_[media[ruling(media)]] != 0.0f))
+            return true;
+        if (!touchingPossible_) return false;
+        std::vector<Crossing> crossings;
+        Real farT = hit.t;
+        TraceCounters uncounted;
+        findTouchingCrossings(hit, rayOrigin, d, crossings, farT, uncounted);
+        return std::any_of(crossings.begin(), crossings.end(),
+                           [&](const Crossing& c) { return mediumDispersion_[c.object] != 0.0f; });
     }
 
     Color mediumAttenuation(const MediumStack& media) const {

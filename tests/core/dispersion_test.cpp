@@ -8,9 +8,11 @@
 #include <cmath>
 #include <fstream>
 #include <numbers>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "analysis/scene_features.h"
 #include "bvh/bvh.h"
 #include "cpu/reference_renderer.h"
 #include "scene/scene_loader.h"
@@ -169,6 +171,58 @@ TEST(Dispersion, PrismDeviatesEachWavelengthByTheMinimumDeviationFormula) {
             if (k > 0) EXPECT_LT(std::acos(leaving[k].y), std::acos(leaving[k - 1].y)) << "red bends less than blue";
         }
     }
+}
+
+// Two glass slabs glued face to face, crown (n 1.5, no dispersion) then flint (n_d 1.7, V_d 20),
+// met at 30 degrees from air: the flint's medium begins at the shared face, so a white ray splits
+// there (render-model-decisions.md, "Dispersion"), and every wavelength sample leaves the second
+// slab parallel to the light that came in (Snell's law through parallel faces: sin theta_out =
+// n_flint(lambda) sin theta_flint = n_crown sin theta_crown = sin theta_in), displaced sideways by
+// its own index. Split at the flint's far face instead, the samples would leave fanned out. The
+// flint's face lies 1e-6 beyond the crown's, within the touching distance, so that the ray's
+// nearest hit at the interface is the crown's, as rounding may make it anywhere.
+Scene gluedSlabs(std::uint32_t wavelengths) {
+    Scene scene;
+    const Material crown = testing::makeMaterial(MaterialModel::Glass, glm::vec3(0), glm::vec3(0), glm::vec3(0), 1.0f, 1.5f);
+    Material flint = testing::makeMaterial(MaterialModel::Glass, glm::vec3(0), glm::vec3(0), glm::vec3(0), 1.0f, 1.7f);
+    flint.abbe = 20.0f;
+    scene.materials = {crown, flint};
+    scene.objectNames = {"crown", "flint"};
+    testing::addBox(scene, {-5.0f, 0.0f, -5.0f}, {5.0f, 1.0f, 5.0f}, 0, 0);
+    testing::addBox(scene, {-5.0f, 1.000001f, -5.0f}, {5.0f, 2.0f, 5.0f}, 1, 1);
+    const double angle = std::numbers::pi / 6.0;
+    scene.camera.from = {0.0f, -3.0f, 0.0f};
+    scene.camera.at = glm::vec3(0.0f, float(-3.0 + std::cos(angle)), float(std::sin(angle)));
+    scene.camera.width = scene.camera.height = 1;
+    scene.lights.clear();
+    scene.settings.wavelengths = wavelengths;
+    scene.settings.maxDepth = 4;
+    return scene;
+}
+
+TEST(Dispersion, ARayEnteringADispersiveGlassThroughATouchingFaceSplitsThere) {
+    constexpr std::uint32_t kSamples = 5;
+    const Scene scene = gluedSlabs(kSamples);
+    const SceneFeatures features = analyseScene(scene);
+    ASSERT_TRUE(features.touchingMediaPossible);
+    ASSERT_TRUE(features.dispersion);
+    const Bvh bvh = buildBvh(scene.triangles);
+    std::vector<TracedRay> rays;
+    RenderStats stats;
+    renderReference(scene, bvh, {.doublePrecision = true, .threads = 1, .tracedRays = &rays}, stats);
+    const glm::dvec3 in = glm::normalize(glm::dvec3(scene.camera.at) - glm::dvec3(scene.camera.from));
+    std::set<float> exits;
+    std::size_t leaving = 0;
+    for (const TracedRay& r : rays)
+        if (r.origin.y > 1.99f && r.direction.y > 0.0f && !r.anyHit) {
+            ++leaving;
+            const glm::dvec3 out = glm::normalize(glm::dvec3(r.direction));
+            EXPECT_NEAR(out.y, in.y, 1e-6) << "a sample leaves at z = " << r.origin.z;
+            EXPECT_NEAR(out.z, in.z, 1e-6) << "a sample leaves at z = " << r.origin.z;
+            exits.insert(r.origin.z);
+        }
+    EXPECT_GE(leaving, kSamples);
+    EXPECT_GE(exits.size(), kSamples);  // each sample's own sideways displacement
 }
 
 }  // namespace

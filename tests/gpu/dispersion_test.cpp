@@ -99,6 +99,28 @@ TEST(Dispersion, PrismRendersAsTheReferenceOnBothBackends) {
     EXPECT_EQ(r.gpuStats.refractionRays, r.cpuStats.refractionRays);
 }
 
+// Crown glass glued to dispersive flint (tests/core's Dispersion.ARayEnteringADispersiveGlass...):
+// rays cross from one into the other, splitting at the shared face on both backends alike.
+TEST(Dispersion, GluedSlabsRenderAsTheReferenceOnBothBackends) {
+    Scene scene = slabUnderHalfSky(kFlintAbbe, 8);
+    scene.triangles.clear();
+    const Material crown = makeMaterial(MaterialModel::Glass, glm::vec3(0), glm::vec3(0), glm::vec3(0), 1.0f, 1.5f);
+    scene.materials.push_back(crown);
+    scene.objectNames = {"flint", "crown"};
+    addBox(scene, {-1.0f, -0.5f, -1.0f}, {1.0f, 0.0f, 1.0f}, 1, 1);
+    addBox(scene, {-1.0f, 0.000001f, -1.0f}, {1.0f, 0.5f, 1.0f}, 0, 0);
+    scene.camera.from = {-1.5f, -4.0f, 1.2f};
+    scene.camera.width = 48;
+    scene.camera.height = 32;
+    scene.settings.maxDepth = 6;
+    const RenderPair r = renderBoth(scene);
+    ASSERT_TRUE(r.gpuStats.kernel->dispersion);
+    ASSERT_TRUE(r.gpuStats.features.touchingMediaPossible);
+    expectImagesMatch(r);
+    EXPECT_EQ(r.gpuStats.refractionRays, r.cpuStats.refractionRays);
+    EXPECT_GT(r.gpuStats.touchingInterfaces, 0u);
+}
+
 // The general kernel (--no-specialize) decides dispersion at run time: the same image, bit for
 // bit, with a small iteration budget so that pixels are suspended and resumed mid-split.
 TEST(Dispersion, GeneralKernelRendersTheSameImage) {
