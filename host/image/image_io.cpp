@@ -364,6 +364,8 @@ Image decodeImage(const fs::path& name, std::vector<unsigned char> bytes, const 
     if (bytes.size() > kMaxImageFileBytes) throw inputError(name, 0, "the image is too large");
     FileBytes file{std::move(bytes)};
     removeEmptyImageDataChunks(file.bytes);
+    if (const auto problem = pngChunkPastTheEnd(file.bytes))
+        throw inputError(name, 0, "cannot read PNG image: cut short: " + *problem);
     if (isBinaryPnm(file.bytes)) return readPnm(name, file.bytes, limit);
     checkStbDeclaredSize(name, file, limit);
     if (stbi_is_hdr_from_memory(file.data(), file.size())) return readLinearHdr(name, file);

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cctype>
 #include <cstring>
+#include <string>
 
 namespace vitrum {
 namespace {
@@ -40,6 +42,23 @@ std::size_t removeEmptyImageDataChunks(std::vector<unsigned char>& png) {
         at += kChunkOverhead + std::size_t(length);
     }
     return removed;
+}
+
+std::optional<std::string> pngChunkPastTheEnd(const std::vector<unsigned char>& png) {
+    if (!isPng(png)) return std::nullopt;
+    for (std::size_t at = kSignature.size(); png.size() - at >= kChunkOverhead;) {
+        const std::uint64_t length = bigEndian32(&png[at]);
+        const std::string type(reinterpret_cast<const char*>(&png[at + 4]), 4);
+        if (length > png.size() - at - kChunkOverhead) {
+            std::string name;
+            for (char c : type) name += std::isalpha(static_cast<unsigned char>(c)) ? c : '?';
+            return name + " chunk of " + std::to_string(length) + " bytes at byte " + std::to_string(at) + ", where " +
+                   std::to_string(png.size() - at - kChunkOverhead) + " are left";
+        }
+        if (type == "IEND") break;
+        at += kChunkOverhead + std::size_t(length);
+    }
+    return std::nullopt;
 }
 
 }  // namespace vitrum

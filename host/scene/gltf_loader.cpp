@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <optional>
@@ -180,6 +181,21 @@ private:
     [[noreturn]] void fail(const std::string& message) const { throw inputError(file_, 0, message); }
     void warnAbout(const std::string& message) const { warn(file_.string() + ": " + message); }
 
+    // A .glb's header gives its length (glTF 2.0, 4.4.3): a file cut short in a download or a copy
+    // is named as such, not as tinygltf's "Invalid glTF binary".
+    void checkGlbLength() const {
+        std::error_code ec;
+        const std::uintmax_t size = fs::file_size(file_, ec);
+        std::ifstream in(file_, std::ios::binary);
+        std::uint32_t header[3] = {0, 0, 0};
+        if (ec || !in.read(reinterpret_cast<char*>(header), sizeof header))
+            fail("is not a glTF binary: it has no 12-byte header");
+        if (header[0] != 0x46546C67u) fail("is not a glTF binary: it does not begin with \"glTF\"");
+        if (header[2] > size)
+            fail("is cut short: its header gives " + std::to_string(header[2]) + " bytes, the file has " +
+                 std::to_string(size));
+    }
+
     void parse() {
         tinygltf::TinyGLTF parser;
         parser.SetImageLoader(keepEncodedImage, &model_);
@@ -187,6 +203,7 @@ private:
         const bool binary = lowerCaseExtension(file_) == ".glb";
         std::error_code ec;
         if (!fs::is_regular_file(file_, ec)) fail(fs::exists(file_, ec) ? "not a regular file" : "no such file");
+        if (binary) checkGlbLength();
         const bool ok = binary ? parser.LoadBinaryFromFile(&model_, &errors, &warnings, file_.string())
                                : parser.LoadASCIIFromFile(&model_, &errors, &warnings, file_.string());
         if (!ok || !errors.empty()) fail(oneLine(errors.empty() ? "unreadable glTF" : errors));
@@ -248,6 +265,20 @@ private:
 
     // An accessor's elements as doubles, `components` a element, with byte strides, normalized
     // integers and sparse substitution (glTF 2.0, 3.6.2), every byte checked against its buffer.
+    // The component types glTF 2.0 allows a vertex attribute (3.7.2.1): FLOAT for POSITION and
+    // NORMAL (others need KHR_mesh_quantization, which vitrum does not read), and for texture
+    // coordinates also normalized unsigned bytes and shorts.
+    void checkComponentType(int index, const std::string& what, bool normalizedIntegers) const {
+        const tinygltf::Accessor& a = accessor(index, what);
+        if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) return;
+        if (normalizedIntegers && a.normalized &&
+            (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT))
+            return;
+        fail(what + " (accessor " + std::to_string(index) + ") has component type " + std::to_string(a.componentType) +
+             "; glTF 2.0 allows it FLOAT (5126)" +
+             (normalizedIntegers ? " or normalized unsigned bytes (5121) or shorts (5123)" : ""));
+    }
+
     std::vector<double> elements(int index, int components, const std::string& what) const {
         const tinygltf::Accessor& a = accessor(index, what);
         const std::string name = what + " (accessor " + std::to_string(index) + ")";
@@ -364,14 +395,17 @@ private:
                 warnAbout("morph targets are ignored: meshes are rendered without their weights");
                 warnedMorph_ = true;
             }
+            checkComponentType(primitive.attributes.at("POSITION"), where + " POSITION", false);
             const std::vector<double> positions = elements(primitive.attributes.at("POSITION"), 3, where + " POSITION");
             const std::size_t vertexCount = positions.size() / 3;
             std::vector<double> normals, uvs;
             if (auto n = primitive.attributes.find("NORMAL"); n != primitive.attributes.end()) {
+                checkComponentType(n->second, where + " NORMAL", false);
                 normals = elements(n->second, 3, where + " NORMAL");
                 if (normals.size() != positions.size()) fail(where + " has a NORMAL for some vertices only");
             }
             if (auto t = primitive.attributes.find("TEXCOORD_0"); t != primitive.attributes.end()) {
+                checkComponentType(t->second, where + " TEXCOORD_0", true);
                 // glTF requires VEC2; assimp 5.2 writes VEC3 with a zero third: its first two read.
                 const bool vec3 = accessor(t->second, where + " TEXCOORD_0").type == TINYGLTF_TYPE_VEC3;
                 uvs = elements(t->second, vec3 ? 3 : 2, where + " TEXCOORD_0");

@@ -132,4 +132,73 @@ TEST_F(GltfCli, TheProjectsGlassSetIsASceneOfItsOwn) {
                             [&](const glm::vec3& p) { return p != image.pixels.front(); }));
 }
 
+// Bad glTF input (issue 50): refused with a message that names the file and what in it is wrong,
+// a non-zero exit and no image written.
+TEST_F(GltfCli, BadFilesAreRefusedNamingTheFileAndWriteNoImage) {
+    // One triangle (glTF 2.0's minimal file), its 36 bytes of positions inline or in tri.bin.
+    const std::string triangle = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA";
+    const std::string inlineBuffer = R"({"byteLength": 36, "uri": "data:application/octet-stream;base64,)" + triangle + R"("})";
+    const std::string view = R"({"buffer": 0, "byteLength": 36})";
+    const std::string positions = R"({"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"})";
+    const std::string mesh = R"([{"mesh": 0}])";
+    auto gltf = [&](const std::string& nodes, const std::string& buffers, const std::string& views,
+                    const std::string& accessors, const std::string& primitive = "") {
+        return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": )" + nodes +
+               R"(, "meshes": [{"primitives": [{"attributes": {"POSITION": 0})" + primitive + R"(}]}], "buffers": [)" +
+               buffers + R"(], "bufferViews": [)" + views + R"(], "accessors": [)" + accessors + "]}";
+    };
+    struct Bad {
+        std::string name, contents, message;
+    };
+    std::vector<Bad> bad = {
+        {"missing_bin.gltf", gltf(mesh, R"({"byteLength": 36, "uri": "tri.bin"})", view, positions), "tri.bin"},
+        {"component_type.gltf",
+         gltf(mesh, inlineBuffer, view, R"({"bufferView": 0, "componentType": 5121, "count": 3, "type": "VEC3"})"),
+         "POSITION (accessor 0) has component type 5121; glTF 2.0 allows it FLOAT (5126)"},
+        {"beyond_buffer.gltf",
+         gltf(mesh, inlineBuffer, view, R"({"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"})"),
+         "POSITION (accessor 0) reaches beyond its buffer"},
+        {"cycle.gltf", gltf(R"([{"mesh": 0, "children": [1]}, {"children": [0]}])", inlineBuffer, view, positions),
+         "node 0 is its own ancestor"},
+        {"index_range.gltf",  // indices 0, 1, 7 as unsigned shorts
+         gltf(mesh, inlineBuffer + R"(, {"byteLength": 6, "uri": "data:application/octet-stream;base64,AAABAAcA"})",
+              view + R"(, {"buffer": 1, "byteLength": 6})",
+              positions + R"(, {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"})", R"(, "indices": 1)"),
+         "uses vertex 7, but it has 3"},
+        {"overflowing_matrix.gltf",
+         gltf(R"([{"mesh": 0, "matrix": [1e400, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}])", inlineBuffer, view, positions),
+         "1e400"},
+    };
+    // A .glb cut short: its header promises more bytes than the file has (glTF 2.0, 4.4).
+    const std::string json = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}], "buffers": [{"byteLength": 36}],
+ "bufferViews": [{"buffer": 0, "byteLength": 36}], "accessors": [)" + positions + "]}";
+    std::string padded = json;
+    while (padded.size() % 4) padded += ' ';
+    auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    std::string glb = u32(0x46546C67) + u32(2) + u32(std::uint32_t(12 + 8 + padded.size() + 8 + 36)) +
+                      u32(std::uint32_t(padded.size())) + u32(0x4E4F534A) + padded + u32(36) + u32(0x004E4942) +
+                      std::string(36, '\0');
+    bad.push_back({"truncated.glb", glb.substr(0, glb.size() - 20),
+                   "is cut short: its header gives " + std::to_string(glb.size()) + " bytes, the file has " +
+                       std::to_string(glb.size() - 20)});
+    for (const Bad& b : bad) {
+        SCOPED_TRACE(b.name);
+        const std::string file = write(b.name, b.contents);
+        const std::string png = path(b.name + ".png");
+        const CommandRun r = vitrum("render " + file + " --width 8 --height 8 -o " + png);
+        EXPECT_EQ(r.exitCode, 1) << r.output;
+        EXPECT_NE(r.output.find("error: " + file + ": "), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find(b.message), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(png));
+    }
+    // The same files made right render: each refusal is the one fault.
+    write("tri.bin", std::string("\0\0\0\0\0\0\0\0\0\0\0\0\0\0\x80\x3f\0\0\0\0\0\0\0\0\0\0\0\0\0\0\x80\x3f\0\0\0\0", 36));
+    for (const std::string& good : {bad[0].name, std::string("whole.glb")}) {
+        if (good == "whole.glb") write(good, glb);
+        const CommandRun r = vitrum("render " + path(good) + " --width 8 --height 8 -o " + path(good + ".png"));
+        EXPECT_EQ(r.exitCode, 0) << good << ": " << r.output;
+    }
+}
+
 }  // namespace

@@ -367,6 +367,31 @@ TEST_F(ImageIoTest, EmptyPngImageDataChunksAreTakenOutBeforeDecoding) {
     EXPECT_EQ(removeEmptyImageDataChunks(notPng), 0u);
 }
 
+// A chunk that claims more bytes than the file has left is refused before stb decodes the file:
+// stb_image 2.27 makes room for the claimed length first (1.4 GB for a mutated PNG in a glTF, found
+// by fuzzing, tests/fuzz/regressions/gltf/). Bytes after IEND are no chunk of the image.
+TEST_F(ImageIoTest, APngChunkRunningPastTheEndIsRefusedBeforeDecoding) {
+    const fs::path original = dir_ / "gradient.png";
+    writeImage(gradient(16, 4), original);
+    const std::string bytes = readBytesOf(original);
+    const std::size_t idat = firstImageData(bytes);
+    ASSERT_NE(idat, std::string::npos);
+    std::string claims = bytes;
+    const std::uint32_t huge = 1407057920u;
+    for (int i = 0; i < 4; ++i) claims[idat + std::size_t(i)] = char(huge >> (24 - 8 * i));
+    const fs::path path = dir_ / "claims.png";
+    writeBytes(path, claims);
+    const std::string message = exceptionMessage([&] { readImage(path); });
+    EXPECT_NE(message.find("cannot read PNG image: cut short: IDAT chunk of 1407057920 bytes at byte " +
+                           std::to_string(idat) + ", where " + std::to_string(bytes.size() - idat - 12) + " are left"),
+              std::string::npos)
+        << message;
+    EXPECT_EQ(pngChunkPastTheEnd(std::vector<unsigned char>(bytes.begin(), bytes.end())), std::nullopt);
+    const fs::path trailing = dir_ / "trailing.png";
+    writeBytes(trailing, bytes + std::string("\0\0\0\x7Fjunk", 8));
+    EXPECT_EQ(readImage(trailing).pixels, readImage(original).pixels);
+}
+
 // stb names an unknown critical chunk by its four bytes, whatever they are: the message shows
 // them escaped, never raw bytes on the user's terminal.
 TEST_F(ImageIoTest, AnUnknownPngChunkIsNamedInPrintableCharacters) {
