@@ -288,10 +288,12 @@ void renderVulkanTiles(VulkanDevice& device, const Scene& scene, const Bvh& bvh,
     const TileGrid grid = tileGridFor(device, scene, options);
     stats.tileSize = tileSizeFor(device.description(), options.tileSize);
     std::uint32_t rootEntry = gpu::kLeafEntryFlag;
-    const ShadingPlan shading = planShading(scene, bvh);
-    checkSceneFitsDevice(device, scene.triangles.size(), sceneGeometry(bvh, shading), &scene, options.tileSize);
-    const TraceBuffers buffers =
-        makeBuffers(device, scene, bvh, shading, grid.tile, kernel.pendingRayCapacity, options.progress, rootEntry);
+    // The shading plan's indices (up to 16 bytes a triangle) are let go once the buffers hold them.
+    const TraceBuffers buffers = [&] {
+        const ShadingPlan shading = planShading(scene, bvh);
+        checkSceneFitsDevice(device, scene.triangles.size(), sceneGeometry(bvh, shading), &scene, options.tileSize);
+        return makeBuffers(device, scene, bvh, shading, grid.tile, kernel.pendingRayCapacity, options.progress, rootEntry);
+    }();
     stats.stateBytesPerPixel = stateBytesPerPixel(kernel.pendingRayCapacity);
     for (std::uint32_t binding = 0; binding < gpu::kTraceBindingCount; ++binding) {
         const bool perTile = std::any_of(kTileBuffers.begin(), kTileBuffers.end(),
