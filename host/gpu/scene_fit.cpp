@@ -1,6 +1,7 @@
 #include "gpu/scene_fit.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,21 @@
 #include "shared/gpu_types.h"
 
 namespace vitrum {
+namespace {
+
+// The largest device-local heap, or VITRUM_MAX_HEAP_BYTES=N where that is less (never more): how a
+// scene behaves on a device with less memory (docs/environment.md).
+VkDeviceSize deviceLocalLimit(const VulkanDevice& device) {
+    VkDeviceSize limit = device.description().deviceLocalBytes;
+    if (const char* text = std::getenv("VITRUM_MAX_HEAP_BYTES"); text && *text) {
+        char* end = nullptr;
+        const unsigned long long value = std::strtoull(text, &end, 10);
+        if (*end == '\0' && (limit == 0 || value < limit)) limit = VkDeviceSize(value);
+    }
+    return limit;
+}
+
+}  // namespace
 
 void checkSceneFitsDevice(const VulkanDevice& device, std::size_t triangles, const SceneGeometryBytes& geometry,
                           const Scene* scene, std::uint32_t tileSize) {
@@ -46,8 +62,9 @@ void checkSceneFitsDevice(const VulkanDevice& device, std::size_t triangles, con
         for (const TileBuffer& buffer : kTileBuffers)
             buffers.push_back({buffer.what, tileBufferBytes(buffer, tilePixels, gpu::kRayStackSize), kStorage, true});
     }
-    VkDeviceSize total = 0;
+    VkDeviceSize total = 0, perTile = 0;
     for (const auto& buffer : buffers) {
+        if (buffer.perTile) perTile += buffer.bytes;
         if (buffer.bytes > bufferLimit(device, buffer.kind).bytes) {
             const InputError error = bufferTooLarge(device, buffer.what, buffer.bytes, buffer.kind);
             if (buffer.perTile) throw InputError(std::string(error.what()) + "; a smaller --tile needs less");
@@ -56,11 +73,17 @@ void checkSceneFitsDevice(const VulkanDevice& device, std::size_t triangles, con
         total += buffer.bytes;
     }
     // All of them live in device-local memory (gpu/gpu_buffer.h's MemoryUse) but the tile's pixels.
-    const VkDeviceSize deviceLocal = device.description().deviceLocalBytes;
-    if (deviceLocal > 0 && total > deviceLocal)
+    const VkDeviceSize deviceLocal = deviceLocalLimit(device);
+    if (deviceLocal > 0 && total > deviceLocal) {
+        // Where the scene's own buffers fit, the tile's decide (a 20M-triangle smooth mesh on
+        // Mesa 22.3's 2 GiB heap fits with --tile 128).
+        const std::string tileHint = total - perTile < deviceLocal
+                                         ? "; one tile's buffers take " + describeBytes(perTile) + ": a smaller --tile needs less"
+                                         : "";
         throw InputError("the scene does not fit the device: its buffers need " + describeBytes(total) +
                          " in all, but the largest device-local memory heap of " + device.name() + " has " +
-                         describeBytes(deviceLocal));
+                         describeBytes(deviceLocal) + tileHint);
+    }
 }
 
 }  // namespace vitrum

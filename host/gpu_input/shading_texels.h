@@ -18,12 +18,12 @@ namespace vitrum {
 struct ShadingPlan {
     std::size_t triangles = 0;
     // The distinct normals (exact bits) of the triangles that are not flat or have a texture, in
-    // the order of their first use in BVH order, and each corner's index among them: three a
-    // triangle in BVH order (empty where every triangle is flat and untextured).
+    // the order of their first use in the scene, and each corner's index among them: three a
+    // triangle, by its index in the scene (empty where every triangle is flat and untextured).
     std::vector<glm::vec3> normals;
     std::vector<std::uint32_t> cornerNormals;
-    // The first uv texel of each triangle in BVH order, kNoCornerUvs for an untextured one
-    // (empty where no material has a texture).
+    // The first uv texel of each triangle, by its index in the scene, kNoCornerUvs for an
+    // untextured one (empty where no material has a texture).
     std::vector<std::uint32_t> uvTexels;
     std::size_t texturedTriangles = 0;
 

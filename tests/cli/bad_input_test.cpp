@@ -443,6 +443,22 @@ TEST_F(CliBadInput, SceneTooLargeForTheDeviceIsRefusedEarly) {
                   "VITRUM_MAX_BUFFER_BYTES=100000");
     EXPECT_EQ(vitrum("render " + path("corners.obj") + " --width 4 --height 4 -o " + path("corners.png"),
                      "VITRUM_MAX_BUFFER_BYTES=200000").exitCode, 0);
+    // All the buffers against the device's memory (VITRUM_MAX_HEAP_BYTES lowers its largest heap):
+    // where the scene's own fit and a tile's tip the sum, the message says a smaller --tile needs
+    // less, and with one the scene renders; where even the least the geometry takes does not fit,
+    // it is refused as its counts are read, with no word of tiles.
+    expectRefused(kGeosphere + " --width 300 --height 300",
+                  {"does not fit the device: its buffers need", "in all, but the largest device-local memory heap of",
+                   "has 48 MiB; one tile's buffers take", "a smaller --tile needs less"},
+                  "VITRUM_MAX_HEAP_BYTES=50000000");
+    EXPECT_EQ(vitrum("render " + kGeosphere + " --width 300 --height 300 --tile 64 -o " + path("tiled.png"),
+                     "VITRUM_MAX_HEAP_BYTES=50000000").exitCode, 0);
+    // The geosphere's least: 159 nodes of 64 bytes, 1280 triangles of 48 and 16.
+    const CommandRun tiny = vitrum("render " + kGeosphere + " -o " + path("tiny.png"), "VITRUM_MAX_HEAP_BYTES=60000");
+    EXPECT_EQ(tiny.exitCode, 1);
+    EXPECT_NE(tiny.output.find("its buffers need " + std::to_string(159 * 64 + 1280 * (48 + 16)) +
+                               " bytes in all, but the largest device-local memory heap"), std::string::npos) << tiny.output;
+    EXPECT_EQ(tiny.output.find("--tile"), std::string::npos) << tiny.output;
     // The geometry fits 1 MB; the buffers of a 256 x 256 tile do not, the first of them its 16-byte
     // pixels. The image's size does not matter (tests/cli/cli_test.cpp), the tile's does.
     expectRefused(kGeosphere + " --width 2000 --height 1000",
