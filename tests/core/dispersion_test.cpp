@@ -166,9 +166,14 @@ TEST(Dispersion, PrismDeviatesEachWavelengthByTheMinimumDeviationFormula) {
         for (std::uint32_t k = 0; k < kSamples; ++k) {
             const double deviation = std::acos(std::clamp(leaving[k].y, -1.0, 1.0));
             EXPECT_LT(leaving[k].z, 0.0);  // towards the base
-            if (k == symmetric) EXPECT_NEAR(deviation, minimumDeviation(indexOf(k)), 2e-6) << k;
-            else EXPECT_GT(deviation, minimumDeviation(indexOf(k)) - 2e-6) << k;
-            if (k > 0) EXPECT_LT(std::acos(leaving[k].y), std::acos(leaving[k - 1].y)) << "red bends less than blue";
+            if (k == symmetric) {
+                EXPECT_NEAR(deviation, minimumDeviation(indexOf(k)), 2e-6) << k;
+            } else {
+                EXPECT_GT(deviation, minimumDeviation(indexOf(k)) - 2e-6) << k;
+            }
+            if (k > 0) {
+                EXPECT_LT(std::acos(leaving[k].y), std::acos(leaving[k - 1].y)) << "red bends less than blue";
+            }
         }
     }
 }

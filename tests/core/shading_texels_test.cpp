@@ -86,7 +86,9 @@ TEST(ShadingTexels, EveryTriangleGetsItsNormalsAndUvsBackBitForBit) {
         EXPECT_EQ(texels[i].bits.w == gpu::kFlatTriangle, original == 0) << "triangle " << original;
         for (int k = 0; k < 3; ++k) {
             EXPECT_EQ(bitsOf(decoded.normal[k]), bitsOf(t.normal[k])) << "triangle " << original << " corner " << k;
-            if (original == 3) EXPECT_EQ(decoded.uv[k], t.uv[k]) << "corner " << k;
+            if (original == 3) {
+                EXPECT_EQ(decoded.uv[k], t.uv[k]) << "corner " << k;
+            }
         }
     }
 }
