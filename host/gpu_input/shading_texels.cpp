@@ -82,7 +82,7 @@ ShadingPlan planShading(const Scene& scene, const Bvh& bvh) {
     parallelFor(plan.triangles, [&](std::size_t begin, std::size_t end) {
         bool indexed = false, withTexture = false;
         for (std::size_t i = begin; i < end && !(indexed && withTexture); ++i) {
-            const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
+            const Triangle& t = scene.triangles[i];
             withTexture = withTexture || textured(scene, t);
             indexed = indexed || withTexture || !isFlat(t);
         }
