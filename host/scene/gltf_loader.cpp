@@ -697,7 +697,9 @@ private:
         } catch (const ImageTooLarge& e) {
             fail(quoted + ": baseColorTexture " + e.what());
         } catch (const InputError& e) {
-            warnAbout(quoted + ": texture cannot be read (" + std::string(e.what()) + "); using baseColorFactor");
+            // Refused, unlike an MTL's map_Kd: a glTF's images are part of the asset, and a glass
+            // set rendered without its labels is not what its author exported (issue 50).
+            fail(quoted + ": its baseColorTexture's image cannot be read: " + e.what());
         }
         return textures_[key] = index;
     }

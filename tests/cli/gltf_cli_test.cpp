@@ -142,10 +142,10 @@ TEST_F(GltfCli, BadFilesAreRefusedNamingTheFileAndWriteNoImage) {
     const std::string positions = R"({"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"})";
     const std::string mesh = R"([{"mesh": 0}])";
     auto gltf = [&](const std::string& nodes, const std::string& buffers, const std::string& views,
-                    const std::string& accessors, const std::string& primitive = "") {
+                    const std::string& accessors, const std::string& primitive = "", const std::string& more = "") {
         return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": )" + nodes +
                R"(, "meshes": [{"primitives": [{"attributes": {"POSITION": 0})" + primitive + R"(}]}], "buffers": [)" +
-               buffers + R"(], "bufferViews": [)" + views + R"(], "accessors": [)" + accessors + "]}";
+               buffers + R"(], "bufferViews": [)" + views + R"(], )" + more + R"("accessors": [)" + accessors + "]}";
     };
     struct Bad {
         std::string name, contents, message;
@@ -165,6 +165,11 @@ TEST_F(GltfCli, BadFilesAreRefusedNamingTheFileAndWriteNoImage) {
               view + R"(, {"buffer": 1, "byteLength": 6})",
               positions + R"(, {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"})", R"(, "indices": 1)"),
          "uses vertex 7, but it has 3"},
+        {"missing_image.gltf",  // a base colour texture whose image file is not there
+         gltf(mesh, inlineBuffer, view, positions, R"(, "material": 0)",
+              R"("images": [{"uri": "label.png"}], "textures": [{"source": 0}], )"
+              R"("materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0}}], )"),
+         "its baseColorTexture's image cannot be read"},
         {"overflowing_matrix.gltf",
          gltf(R"([{"mesh": 0, "matrix": [1e400, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}])", inlineBuffer, view, positions),
          "1e400"},
