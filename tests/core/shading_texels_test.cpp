@@ -3,7 +3,9 @@
 // flat untextured triangle in one texel, each distinct normal stored once.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <bit>
+#include <set>
 #include <vector>
 
 #include "bvh/bvh.h"
@@ -111,6 +113,56 @@ TEST(ShadingTexels, AFlatUntexturedModelTakesOneTexelATriangle) {
     EXPECT_EQ(sceneGeometryAtLeast(100).shading, 100u * 16u);
     EXPECT_LE(sceneGeometryAtLeast(100).nodes, sceneGeometry(bvh, plan).nodes);
     EXPECT_EQ(sceneGeometryAtLeast(100).nodes, (13u - 1u) * 64u);
+}
+
+// A big smooth mesh, every third quad textured: each distinct normal once, in the order of first
+// use in the scene, every corner pointing at its own normal and uv.
+TEST(ShadingTexels, ABigSmoothMeshHasEachNormalOnceInTheOrderOfFirstUse) {
+    Scene scene = mixedShading();
+    scene.triangles.clear();
+    constexpr int kSide = 320;  // 2 x 319 x 319 = 203,522 triangles
+    auto normalAt = [](int x, int y) { return glm::normalize(glm::vec3(float(x) - 160.0f, float(y) - 160.0f, 100.0f)); };
+    for (int y = 0; y + 1 < kSide; ++y)
+        for (int x = 0; x + 1 < kSide; ++x) {
+            const glm::vec3 a(x, y, 0), b(x + 1, y, 0), c(x, y + 1, 0), d(x + 1, y + 1, 0);
+            Triangle t1 = makeTriangle(a, b, d, 0, 0), t2 = makeTriangle(a, d, c, 0, 0);
+            t1.normal[0] = t2.normal[0] = normalAt(x, y);
+            t1.normal[1] = normalAt(x + 1, y);
+            t1.normal[2] = t2.normal[1] = normalAt(x + 1, y + 1);
+            t2.normal[2] = normalAt(x, y + 1);
+            // Every third quad textured (material 1), its corners' uvs its own.
+            if ((x + y) % 3 == 0)
+                for (Triangle* t : {&t1, &t2}) {
+                    t->material = 1;
+                    for (int k = 0; k < 3; ++k) t->uv[k] = glm::vec2(float(x) + 0.25f * float(k), float(y));
+                }
+            scene.triangles.push_back(t1);
+            scene.triangles.push_back(t2);
+        }
+    const Bvh bvh = buildBvh(scene.triangles);
+    const ShadingPlan plan = planShading(scene, bvh);
+    // The order of first use, worked out here.
+    std::vector<glm::uvec3> firstUse;
+    std::set<std::array<std::uint32_t, 3>> seen;
+    for (const Triangle& t : scene.triangles)
+        for (const glm::vec3& n : t.normal) {
+            const glm::uvec3 bits = bitsOf(n);
+            if (seen.insert({bits.x, bits.y, bits.z}).second) firstUse.push_back(bits);
+        }
+    ASSERT_EQ(plan.normals.size(), firstUse.size());
+    for (std::size_t k = 0; k < firstUse.size(); ++k) ASSERT_EQ(bitsOf(plan.normals[k]), firstUse[k]) << k;
+    std::vector<gpu::ShadingTexel> texels(plan.texels());
+    writeShading(scene, bvh, plan, texels);
+    for (std::size_t i = 0; i < bvh.triangleOrder.size(); ++i) {
+        const Decoded decoded = decode(texels, i);
+        const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
+        for (int k = 0; k < 3; ++k) {
+            ASSERT_EQ(bitsOf(decoded.normal[k]), bitsOf(t.normal[k])) << i << " " << k;
+            if (t.material == 1) {
+                ASSERT_EQ(decoded.uv[k], t.uv[k]) << i << " " << k;
+            }
+        }
+    }
 }
 
 }  // namespace
