@@ -8,6 +8,7 @@
 #include "app/arguments.h"
 #include "app/commands.h"
 #include "bvh/bvh.h"
+#include "common/byte_size.h"
 #include "common/error.h"
 #include "common/progress.h"
 #include "analysis/scene_features.h"
@@ -104,8 +105,9 @@ int infoCommand(int argc, char** argv, int first) {
     std::printf("bvh: %u nodes, %u leaves, depth %u, at most %u triangles a leaf, SAH cost %.2f, built in %.3f s\n",
                 s.nodeCount, s.leafCount, s.maxDepth, s.maxLeafTriangles, s.sahCost, s.buildSeconds);
     const SceneGeometryBytes bytes = sceneGeometry(bvh, planShading(scene, bvh));
-    std::printf("gpu memory: %.1f bytes per triangle (BVH, vertices, shading)\n",
-                double(bytes.total()) / double(std::max<std::size_t>(1, scene.triangles.size())));
+    std::printf("gpu memory: %.1f bytes per triangle (BVH, vertices, shading), %s in all\n",
+                double(bytes.total()) / double(std::max<std::size_t>(1, scene.triangles.size())),
+                describeBytes(bytes.total()).c_str());
     return 0;
 }
 

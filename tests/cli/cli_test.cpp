@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -247,6 +248,12 @@ TEST_F(Cli, InfoReportsTrianglesAndBvh) {
     EXPECT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("triangles: 1280"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("SAH cost"), std::string::npos) << r.output;
+    // The device bytes: 64 an interior node (the nodes less the leaves), 48 a triangle's vertices,
+    // and a shading texel of 16 for each triangle and each of the geosphere's 642 smooth normals.
+    std::smatch bvh;
+    ASSERT_TRUE(std::regex_search(r.output, bvh, std::regex("bvh: ([0-9]+) nodes, ([0-9]+) leaves"))) << r.output;
+    const long long bytes = (std::stoll(bvh[1]) - std::stoll(bvh[2])) * 64 + 1280 * 48 + (1280 + 642) * 16;
+    EXPECT_NE(r.output.find(", " + std::to_string(bytes) + " bytes in all"), std::string::npos) << r.output;
 }
 
 // Glass of two priorities: `vitrum info` gives each material's and says the kernel has the rule.
