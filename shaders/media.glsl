@@ -57,14 +57,6 @@ float ior(uvec4 media, uint count, uint code) {
 // IOR of the medium a ray is in.
 float mediumIor(PendingRay r) { return ior(r.media, mediaCount(r), wavelengthCode(r)); }
 
-// Whether a white ray splits at a glass hit on `object`: its medium or the medium the ray is in
-// disperses (render-model-decisions.md, "Dispersion").
-bool splitsAt(PendingRay r, uint object) {
-    if (!kDispersion || wavelengthCode(r) != 0u || wavelengthCount() == 0u) return false;
-    uint count = mediaCount(r);
-    return objectDispersion(object) != 0.0 || (count > 0u && objectDispersion(r.media[ruling(r.media, count)]) != 0.0);
-}
-
 vec3 mediumAttenuation(PendingRay r) {
     if (!kAbsorption) return vec3(0.0);
     uint count = mediaCount(r);

@@ -63,11 +63,16 @@ void startWaitingWavelength() {
     st.ray.weight.xyz *= wavelengthSample(code - 1u).xyz;
 }
 
-// Whether a white ray at a glass hit on `object` crosses a touching glass whose medium disperses
-// there (it enters or leaves that medium at this hit): then it splits as at the dispersive glass
-// itself (render-model-decisions.md, "Dispersion"). The touching glass is what finishTrace selects.
-bool touchingGlassDisperses(uint object) {
-    if (!kTouchingProbe || !touchingProbeOn() || wavelengthCode(st.ray) != 0u || wavelengthCount() == 0u) return false;
+// Whether st.ray, white, splits at a glass hit on `object`: the medium of the object, the one the
+// ray is in, or that of a touching glass the ray crosses there (finishTrace's selection: the ray
+// enters or leaves it at this hit) disperses (render-model-decisions.md, "Dispersion"; the CPU
+// reference's splitsHere).
+bool splitsAt(uint object) {
+    if (!kDispersion || wavelengthCode(st.ray) != 0u || wavelengthCount() == 0u) return false;
+    uint count = mediaCount(st.ray);
+    if (objectDispersion(object) != 0.0 || (count > 0u && objectDispersion(st.ray.media[ruling(st.ray.media, count)]) != 0.0))
+        return true;
+    if (!kTouchingProbe || !touchingProbeOn()) return false;
     float farthest = st.traversal.tMax;
     uvec4 touching = selectTouching(st.candidates.touchingObjects, st.candidates.touchingT,
                                     st.traversal.tMax + touchingDistance(), object, farthest);
@@ -94,7 +99,7 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
         return;
     }
     if (kDispersion && usesMaterial(kMaterialGlass) && materialModel(m) == kMaterialGlass &&
-        (splitsAt(st.ray, floatBitsToUint(tri.v1.w)) || touchingGlassDisperses(floatBitsToUint(tri.v1.w)))) {
+        splitsAt(floatBitsToUint(tri.v1.w))) {
         splitIntoWavelengths();
         return;
     }
