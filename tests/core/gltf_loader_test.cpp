@@ -77,6 +77,15 @@ public:
     }
     json& doc() { return doc_; }
 
+    // `image` as the file's one texture, a PNG in a data URI (written to `scratch` and read back).
+    void embedTexture(const Image& image, const fs::path& scratch) {
+        writeImage(image, scratch);
+        std::ifstream file(scratch, std::ios::binary);
+        const std::vector<unsigned char> png{std::istreambuf_iterator<char>(file), {}};
+        doc_["images"] = json::array({{{"uri", "data:image/png;base64," + base64(png)}}});
+        doc_["textures"] = json::array({{{"source", 0}}});
+    }
+
     fs::path write(const fs::path& file) {
         json doc = doc_;
         if (!bin_.empty())
@@ -290,12 +299,8 @@ TEST_F(GltfLoader, MaterialsMapOntoTheRenderModel) {
 TEST_F(GltfLoader, BaseColourFactorMultipliesItsEmbeddedTexture) {
     Image image(2, 1);
     image.pixels = {glm::vec3(srgbToLinear(128.0f / 255.0f)), glm::vec3(1.0f)};
-    writeImage(image, dir_ / "texture.png");
-    std::ifstream file(dir_ / "texture.png", std::ios::binary);
-    const std::vector<unsigned char> png{std::istreambuf_iterator<char>(file), {}};
     GltfBuilder b;
-    b.doc()["images"] = json::array({{{"uri", "data:image/png;base64," + base64(png)}}});
-    b.doc()["textures"] = json::array({{{"source", 0}}});
+    b.embedTexture(image, dir_ / "texture.png");
     const int uvs = b.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, 5126, "VEC2", 3);
     const int positions = b.positions(kTriangle);
     for (double red : {1.0, 0.5}) {
@@ -321,13 +326,8 @@ TEST_F(GltfLoader, BaseColourFactorMultipliesItsEmbeddedTexture) {
 // matrices, rows (1 0 ox; 0 1 oy), (cos sin 0; -sin cos 0), (sx 0; 0 sy), in glTF's coordinates
 // (v down); vitrum's v is then 1 - v'. A material without it keeps its coordinates.
 TEST_F(GltfLoader, TextureTransformMovesTheBaseColourCoordinates) {
-    Image image(1, 1);
-    writeImage(image, dir_ / "texel.png");
-    std::ifstream file(dir_ / "texel.png", std::ios::binary);
-    const std::vector<unsigned char> png{std::istreambuf_iterator<char>(file), {}};
     GltfBuilder b;
-    b.doc()["images"] = json::array({{{"uri", "data:image/png;base64," + base64(png)}}});
-    b.doc()["textures"] = json::array({{{"source", 0}}});
+    b.embedTexture(Image(1, 1), dir_ / "texel.png");
     b.doc()["extensionsUsed"] = json::array({"KHR_texture_transform"});
     const std::vector<float> uv = {0.25f, 0.5f, 1.0f, 0.0f, 0.0f, 1.0f};
     const int uvs = b.accessor(uv, 5126, "VEC2", 3);
