@@ -250,7 +250,7 @@ SceneStudy studyScene(VulkanDevice& device, const std::string& file, const Optio
     Scene scene = loadScene(fs::path(VITRUM_SOURCE_DIR) / file);
     scene.camera.width = options.width;
     scene.camera.height = options.height;
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     SceneStudy study;
     study.name = fs::path(file).stem().string();
     study.triangles = scene.triangles.size();

@@ -131,7 +131,7 @@ int run(int argc, char** argv) {
     scene.camera.height = kHeight;
     scene.background.colour = glm::vec3(0.2f);
     scene.settings.maxDepth = 1;  // primary rays only; no lights, so no shadow rays
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     const std::vector<gpu::TriangleVertices> vertices = packTriangleVertices(bvh, scene.triangles);
     const TraversalNodes tree = makeTraversalNodes(bvh.nodes);
     const std::vector<PlainNode> plainNodes = toPlainNodes(tree);

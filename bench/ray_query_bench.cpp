@@ -182,7 +182,7 @@ int run(int argc, char** argv) {
             [&] { return driver.structures.build(rayQueryDevice); },
             [&] {
                 return secondsOf([&] {
-                    const Bvh bvh = buildBvh(workload.scene.triangles);
+                    const Bvh bvh = buildSceneBvh(workload.scene);
                     const std::vector<gpu::TriangleVertices> triangles =
                         packTriangleVertices(bvh, workload.scene.triangles);
                     const TraversalNodes nodes = makeTraversalNodes(bvh.nodes);

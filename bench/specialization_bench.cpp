@@ -115,7 +115,7 @@ int run(int argc, char** argv) {
         Scene scene = loadScene(fs::path(VITRUM_SOURCE_DIR) / file);
         scene.camera.width = width;
         scene.camera.height = height;
-        Bvh bvh = buildBvh(scene.triangles);
+        Bvh bvh = buildSceneBvh(scene);
         std::cerr << file << ": " << std::flush;
         const Compared c = compare(scene, bvh, runs, cacheRoot);
         const Measured& general = c.general;

@@ -87,7 +87,7 @@ int run(int argc, char** argv) {
         scene.camera.width = options.width;
         scene.camera.height = options.height;
         scene.settings.samplesPerPixel = 1;
-        const Bvh bvh = buildBvh(scene.triangles);
+        const Bvh bvh = buildSceneBvh(scene);
         const std::string name = fs::path(file).stem().string();
         std::cerr << name << ": truth (CPU double, " << kTruthWavelengths << " wavelength samples)\n";
         Scene truthScene = scene;

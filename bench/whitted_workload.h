@@ -42,7 +42,7 @@ inline WhittedScene loadWhittedScene(const std::filesystem::path& file) {
     w.scene.camera.width = kWhittedWidth;
     w.scene.camera.height = kWhittedHeight;
     w.scene.settings.maxDepth = kWhittedMaxDepth;
-    w.bvh = buildBvh(w.scene.triangles);
+    w.bvh = buildSceneBvh(w.scene);
     w.triangles = packTriangleVertices(w.bvh, w.scene.triangles);
     return w;
 }

@@ -2,7 +2,7 @@
 // `st` (trace_state.glsl) and its stack in gStack, so that a dispatch can stop after any step and
 // the next one resume it (suspend.glsl). The includer provides nodeTexels and vertexTexels
 // (geometry_texels.glsl), `params` and the constants kShadowRays, kTouchingProbe, kOpaqueContact,
-// kCoincidentOpaque, kResumable and kFullSubgroups: trace.comp's (bindings.glsl,
+// kCoincidentOpaque, kInstancing, kResumable and kFullSubgroups: trace.comp's (bindings.glsl,
 // specialization.glsl) or a benchmark's own (bench/trace_only).
 #ifndef VITRUM_BVH_GLSL
 #define VITRUM_BVH_GLSL
@@ -43,7 +43,23 @@ void beginTraversal(vec3 origin, vec3 direction, float tMin, float tMax) {
     st.traversal.leafCursor = 0u;
     st.traversal.leafEnd = 0u;
     st.traversal.closest = kNoTriangle;
+    if (kInstancing) {
+        st.traversal.instance = kNoInstance;
+        st.traversal.closestInstance = kNoInstance;
+    }
 }
+
+// Instances (gpu_types.h, "Instances"): a point and a direction by a 3x4 matrix's rows, with the
+// operations of host/bvh/bvh_traversal.cpp's rayIntoInstance in the same order.
+vec3 pointByRows(vec4 r0, vec4 r1, vec4 r2, vec3 p) {
+    return vec3(ieeeDot(r0.xyz, p) + r0.w, ieeeDot(r1.xyz, p) + r1.w, ieeeDot(r2.xyz, p) + r2.w);
+}
+vec3 vectorByRows(vec4 r0, vec4 r1, vec4 r2, vec3 v) { return vec3(ieeeDot(r0.xyz, v), ieeeDot(r1.xyz, v), ieeeDot(r2.xyz, v)); }
+
+GpuInstance instanceNumbered(uint instance) { return loadInstance(firstInstanceNode() + kGpuInstanceNodes * instance); }
+
+// Whether a traversal entry enters an instance or leaves one (not the empty scene's leaf).
+bool instanceEntry(uint entry) { return (entry & (kLeafEntryFlag | 15u)) == kLeafEntryFlag && entry != kLeafEntryFlag; }
 
 // A closest-hit traversal of st.ray, with no touching candidates yet (touching.glsl), no
 // opaque surface under glass and none the ray leaves through (bvh.glsl's traverse).
@@ -57,6 +73,10 @@ void beginClosestTraversal() {
         st.candidates.closestIsGlass = false;
     }
     if (kCoincidentOpaque) st.candidates.leaving = vec4(kNoCandidate, uintBitsToFloat(kNoTriangle), 0.0, 0.0);
+    if (kInstancing) {
+        st.candidates.contactInstance = kNoInstance;
+        st.candidates.leavingInstance = kNoInstance;
+    }
     beginTraversal(st.ray.origin.xyz, st.ray.direction.xyz, 0.0, 3.0e38);
     st.phase = kPhaseTrace;
 }
@@ -117,6 +137,18 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     float tMin = st.traversal.tMin;
     vec3 direction = st.traversal.direction;
     float tMax = st.traversal.tMax;
+    // In an instance's mesh (resumed there), the ray in its space and its objects' first.
+    uint instance = kInstancing ? st.traversal.instance : kNoInstance;
+    uint closestInstance = st.traversal.closestInstance;
+    uint contactInstance = st.candidates.contactInstance;
+    uint leavingInstance = st.candidates.leavingInstance;
+    uint firstObject = 0u;
+    if (kInstancing && instance != kNoInstance) {
+        GpuInstance entered = instanceNumbered(instance);
+        origin = pointByRows(entered.toObject0, entered.toObject1, entered.toObject2, st.traversal.origin);
+        direction = vectorByRows(entered.toObject0, entered.toObject1, entered.toObject2, st.traversal.direction);
+        firstObject = entered.info.z;
+    }
     BoxRay boxRay = makeBoxRay(origin, direction);
     TriangleRay triangleRay = makeTriangleRay(origin, direction);
     uint cursor = st.traversal.leafCursor;
@@ -180,8 +212,35 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
                 counters.loopSteps += 1u;
                 if ((current & kLeafEntryFlag) == 0u)
                     visitInteriorNode(current, top, over, farEntry, direction, boxRay, tMin, tMax + reach);
+                // An instance's entry moves the ray into its mesh's space, below an entry that
+                // moves it back when it comes off the stack (gpu_types.h, "Instances"). That
+                // entry goes where the iteration's store goes when the two are one slot.
+                if (kInstancing && !over && instanceEntry(current)) {
+                    bool leaving = current == kLeaveInstanceEntry;
+                    instance = leaving ? kNoInstance : ((current & ~kLeafEntryFlag) >> 4) - 1u;
+                    current = kNoEntry;
+                    origin = st.traversal.origin;
+                    direction = st.traversal.direction;
+                    firstObject = 0u;
+                    if (!leaving && top + 2u > kTraversalStackSize) {
+                        counters.traversalStackOverflows += 1u;  // the instance is passed by, never silently
+                        instance = kNoInstance;
+                    } else if (!leaving) {
+                        GpuInstance entered = instanceNumbered(instance);
+                        origin = pointByRows(entered.toObject0, entered.toObject1, entered.toObject2, origin);
+                        direction = vectorByRows(entered.toObject0, entered.toObject1, entered.toObject2, direction);
+                        firstObject = entered.info.z;
+                        gStack[top] = kLeaveInstanceEntry;
+                        if (top == slot) farEntry = kLeaveInstanceEntry;
+                        top += 1u;
+                        current = entered.info.y;
+                    }
+                    boxRay = makeBoxRay(origin, direction);
+                    triangleRay = makeTriangleRay(origin, direction);
+                    if (current == kNoEntry) inNodes = false;
+                }
                 // A leaf, taken off the stack or just entered, is taken in the same iteration.
-                if (!over && (current & kLeafEntryFlag) != 0u) {
+                if (!over && current != kNoEntry && (current & kLeafEntryFlag) != 0u) {
                     cursor = (current & ~kLeafEntryFlag) >> 4;
                     leafEnd = cursor + (current & 15u);
                     current = kNoEntry;
@@ -203,19 +262,24 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
                 bool glass = floatBitsToUint(tri.v2.w) == kTriangleGlass;
                 if (collectTouching && glass) {
                     bool entering = ieeeDot(direction, windingNormal(tri)) < 0.0;
-                    addTouchingCandidate(touchingObjects, touchingT, floatBitsToUint(tri.v1.w), entering, hit.x,
+                    addTouchingCandidate(touchingObjects, touchingT, floatBitsToUint(tri.v1.w) + firstObject, entering, hit.x,
                                          tMax + reach, counters.mediumStackOverflows);
                 }
                 if (collectContact && !glass &&
-                    (hit.x < contact.x || (hit.x == contact.x && triangle < floatBitsToUint(contact.y))))
+                    (hit.x < contact.x || (hit.x == contact.x && triangle < floatBitsToUint(contact.y)))) {
                     contact = vec4(hit.x, uintBitsToFloat(triangle), hit.yz);
+                    contactInstance = instance;
+                }
                 if (collectLeaving && !glass &&
                     (hit.x < leaving.x || (hit.x == leaving.x && triangle < floatBitsToUint(leaving.y))) &&
-                    ieeeDot(direction, windingNormal(tri)) > 0.0)
+                    ieeeDot(direction, windingNormal(tri)) > 0.0) {
                     leaving = vec4(hit.x, uintBitsToFloat(triangle), hit.yz);
+                    leavingInstance = instance;
+                }
                 if (hit.x < tMax) {
                     tMax = hit.x;
                     closest = triangle;
+                    closestInstance = instance;
                     barycentrics = hit.yz;
                     closestGlass = glass;
                     if (kShadowRays && mode == kTraverseAny) {
@@ -239,10 +303,12 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     if (collectLeaving && over && leaving.x < tMax + reach) {
         tMax = leaving.x;
         closest = floatBitsToUint(leaving.y);
+        closestInstance = leavingInstance;
         barycentrics = leaving.zw;
     } else if (collectContact && over && closestGlass && contact.x < tMax + reach) {
         tMax = contact.x;
         closest = floatBitsToUint(contact.y);
+        closestInstance = contactInstance;
         barycentrics = contact.zw;
     }
     st.traversal.tMax = tMax;
@@ -251,6 +317,12 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     st.traversal.closest = closest;
     st.traversal.barycentrics = barycentrics;
     st.traversal.stackTop = top;
+    if (kInstancing) {
+        st.traversal.instance = instance;
+        st.traversal.closestInstance = closestInstance;
+        st.candidates.contactInstance = contactInstance;
+        st.candidates.leavingInstance = leavingInstance;
+    }
     if (collectTouching) {
         st.candidates.touchingObjects = touchingObjects;
         st.candidates.touchingT = touchingT;

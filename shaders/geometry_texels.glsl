@@ -19,4 +19,12 @@ TriangleVertices loadTriangle(uint i) {
                             fetchVec4(vertexTexels, first, 2u));
 }
 
+// The instance at traversal node `node` (gpu_types.h, "Instances": two nodes' texels).
+GpuInstance loadInstance(uint node) {
+    uint first = kTraversalNodeTexels * node;
+    return GpuInstance(fetchVec4(nodeTexels, first, 0u), fetchVec4(nodeTexels, first, 1u), fetchVec4(nodeTexels, first, 2u),
+                       fetchVec4(nodeTexels, first, 3u), fetchVec4(nodeTexels, first, 4u), fetchVec4(nodeTexels, first, 5u),
+                       imageLoad(nodeTexels, int(first + 6u)), uvec4(0u));
+}
+
 #endif

@@ -98,8 +98,17 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
         st.phase = kPhaseNextRay;
         return;
     }
-    if (kDispersion && usesMaterial(kMaterialGlass) && materialModel(m) == kMaterialGlass &&
-        splitsAt(floatBitsToUint(tri.v1.w))) {
+    // A hit in an instance's mesh (gpu_types.h, "Instances"): its object is the instance's, and
+    // its point and normals move to the world (normals by the world-to-object rows' transpose),
+    // as the CPU reference's describeHit moves them.
+    uint instance = kInstancing ? st.traversal.closestInstance : kNoInstance;
+    GpuInstance placed;
+    uint object = floatBitsToUint(tri.v1.w);
+    if (kInstancing && instance != kNoInstance) {
+        placed = instanceNumbered(instance);
+        object += placed.info.z;
+    }
+    if (kDispersion && usesMaterial(kMaterialGlass) && materialModel(m) == kMaterialGlass && splitsAt(object)) {
         splitIntoWavelengths();
         return;
     }
@@ -110,8 +119,17 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
     vec2 bary = st.traversal.barycentrics;
     float w0 = 1.0 - bary.x - bary.y;
     vec3 edgeCross = windingNormal(tri);
-    float crossLength = ieeeLength(edgeCross);
     vec3 interpolated = w0 * normals[0] + bary.x * normals[1] + bary.y * normals[2];
+    // The hit point from the barycentrics, not origin + t d: it lies on the triangle to within
+    // rounding (Waechter and Binder).
+    vec3 position = w0 * tri.v0.xyz + bary.x * tri.v1.xyz + bary.y * tri.v2.xyz;
+    if (kInstancing && instance != kNoInstance) {
+        edgeCross = edgeCross.x * placed.toObject0.xyz + edgeCross.y * placed.toObject1.xyz + edgeCross.z * placed.toObject2.xyz;
+        interpolated = interpolated.x * placed.toObject0.xyz + interpolated.y * placed.toObject1.xyz +
+                       interpolated.z * placed.toObject2.xyz;
+        position = pointByRows(placed.toWorld0, placed.toWorld1, placed.toWorld2, position);
+    }
+    float crossLength = ieeeLength(edgeCross);
     float normalLength = ieeeLength(interpolated);
     bool shadingValid = normalLength > 0.0 && !isinf(normalLength);
     // A triangle whose corners are collinear has no geometric normal but can still be hit by
@@ -120,15 +138,12 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
                                ? edgeCross / crossLength
                                : (shadingValid ? interpolated / normalLength : -st.ray.direction.xyz);
     vec3 shadingNormal = shadingValid ? interpolated / normalLength : geometricNormal;
-    // The hit point from the barycentrics, not origin + t d: it lies on the triangle to within
-    // rounding (Waechter and Binder).
-    vec3 position = w0 * tri.v0.xyz + bary.x * tri.v1.xyz + bary.y * tri.v2.xyz;
     st.hit.position = position;
     st.hit.t = t;
     st.hit.shadingNormal = shadingNormal;
     st.hit.material = floatBitsToUint(tri.v0.w);
     st.hit.geometricNormal = geometricNormal;
-    st.hit.object = floatBitsToUint(tri.v1.w);
+    st.hit.object = object;
     if (kTextures) {  // only texture lookups read them
         vec2 uv0, uv1, uv2;
         loadCornerUvs(triangle, uv0, uv1, uv2);

@@ -27,6 +27,7 @@ layout(constant_id = kConstantOpaqueContact) const bool kOpaqueContact = true;  
 layout(constant_id = kConstantCoincidentOpaque) const bool kCoincidentOpaque = true;  // opaque surfaces of two objects may coincide
 layout(constant_id = kConstantMediumPriorities) const bool kMediumPriorities = true;  // glass media of different priorities
 layout(constant_id = kConstantDispersion) const bool kDispersion = true;  // some glass disperses (MTL Vd)
+layout(constant_id = kConstantInstancing) const bool kInstancing = true;  // the BVH has two levels (gpu_types.h, "Instances")
 // Not a scene feature but the kernel's role (shaders/suspend.glsl): the first dispatch of a tile
 // runs without it and gives up the pixels that need more than one dispatch; the resumable kernel
 // restarts them and suspends them between dispatches.

@@ -46,9 +46,13 @@ void packState() {
     gStateTexels[12] = tracing ? floatBitsToUint(c.contact)
                                : uvec4(floatBitsToUint(st.hit.geometricNormal), st.hit.object);
     gStateTexels[13] = tracing ? floatBitsToUint(c.leaving) : st.touching;
-    gStateTexels[14] = tracing ? uvec4(c.closestIsGlass ? 1u : 0u, 0u, 0u, 0u)
+    // With instances (kInstancing): the instance the traversal is in, and while tracing those of
+    // the nearest hit and the two candidates (bvh.glsl).
+    uvec3 instances = kInstancing ? uvec3(st.traversal.closestInstance, c.contactInstance, c.leavingInstance) : uvec3(0u);
+    uint inInstance = kInstancing ? st.traversal.instance : 0u;
+    gStateTexels[14] = tracing ? uvec4(c.closestIsGlass ? 1u : 0u, instances)
                                : floatBitsToUint(vec4(st.farthestTouching, st.shadowLight));
-    gStateTexels[15] = tracing ? uvec4(0u) : uvec4(floatBitsToUint(st.hit.uv), st.light, 0u);
+    gStateTexels[15] = tracing ? uvec4(0u, 0u, 0u, inInstance) : uvec4(floatBitsToUint(st.hit.uv), st.light, inInstance);
 }
 
 // Both readings of texels 10-15 are unpacked: the one not in use is never read.
@@ -78,6 +82,10 @@ void unpackState() {
     st.candidates.contact = uintBitsToFloat(gStateTexels[12]);
     st.candidates.leaving = uintBitsToFloat(gStateTexels[13]);
     st.candidates.closestIsGlass = gStateTexels[14].x != 0u;
+    st.traversal.closestInstance = gStateTexels[14].y;
+    st.candidates.contactInstance = gStateTexels[14].z;
+    st.candidates.leavingInstance = gStateTexels[14].w;
+    st.traversal.instance = gStateTexels[15].w;
     vec4 position = uintBitsToFloat(gStateTexels[10]);
     st.hit.position = position.xyz;
     st.hit.t = position.w;

@@ -18,6 +18,10 @@ struct Traversal {
     uint closest;        // the nearest hit's triangle, or kNoTriangle
     uint stackTop;       // entries on the traversal stack (gStack), or kFreshTraversal
     vec2 barycentrics;   // the nearest hit's
+    // The instance whose mesh the traversal is in (its ray moved there: gpu_types.h, "Instances"),
+    // and the nearest hit's, or kNoInstance (the world); origin and direction stay the world's.
+    uint instance;
+    uint closestInstance;
 };
 
 // What a closest-hit traversal collects beyond its nearest hit (bvh.glsl's traverse).
@@ -27,6 +31,8 @@ struct Candidates {
     vec4 contact;           // the nearest opaque hit under glass: t, triangle (bits), barycentrics
     vec4 leaving;           // the nearest opaque surface the ray leaves through: the same
     bool closestIsGlass;    // the nearest hit so far is glass
+    uint contactInstance;   // the instance of `contact`'s triangle, and of `leaving`'s
+    uint leavingInstance;
 };
 
 // The hit being shaded.

@@ -31,6 +31,7 @@ const bool kShadowRays = true;
 const bool kTouchingProbe = false;
 const bool kOpaqueContact = false;
 const bool kCoincidentOpaque = false;
+const bool kInstancing = false;
 const bool kResumable = false;
 const bool kFullSubgroups = true;
 RenderParams params;

@@ -16,23 +16,40 @@
 #include "analysis/camera_medium.h"
 #include "analysis/double_box.h"
 #include "analysis/glass_proximity.h"
+#include "scene/instances.h"
 #include "scene/scene_names.h"
 #include "shared/gpu_types.h"
 
 namespace vitrum {
 namespace {
 
-// Boxes of the objects that have glass triangles (all of each such object's triangles).
-std::vector<DoubleBox> glassObjectBoxes(const Scene& scene) {
+// Boxes of the objects among triangles [first, end) that have glass triangles (all of each such
+// object's triangles), by object.
+std::map<std::uint32_t, DoubleBox> glassObjectBoxes(const Scene& scene, std::uint32_t first, std::uint32_t end) {
     std::set<std::uint32_t> glass;
-    for (const Triangle& t : scene.triangles)
-        if (scene.materials[t.material].model == MaterialModel::Glass) glass.insert(t.object);
+    for (std::uint32_t i = first; i < end; ++i)
+        if (scene.materials[scene.triangles[i].material].model == MaterialModel::Glass) glass.insert(scene.triangles[i].object);
     std::map<std::uint32_t, DoubleBox> boxes;
-    for (const Triangle& t : scene.triangles)
+    for (std::uint32_t i = first; i < end; ++i) {
+        const Triangle& t = scene.triangles[i];
         if (glass.count(t.object))
             for (const glm::vec3& p : t.position) boxes[t.object].grow(glm::dvec3(p));
+    }
+    return boxes;
+}
+
+// The boxes of the scene's glass objects: an instance's are its mesh's objects' boxes moved to the
+// world (scene/instances.h's instanceBox, which holds them).
+std::vector<DoubleBox> glassObjectBoxes(const Scene& scene) {
     std::vector<DoubleBox> result;
-    for (const auto& [object, box] : boxes) result.push_back(box);
+    for (const auto& [object, box] : glassObjectBoxes(scene, 0, worldTriangleCount(scene))) result.push_back(box);
+    std::vector<std::map<std::uint32_t, DoubleBox>> meshBoxes;
+    for (const Mesh& mesh : scene.meshes) meshBoxes.push_back(glassObjectBoxes(scene, mesh.first, mesh.first + mesh.count));
+    for (const Instance& instance : scene.instances)
+        for (const auto& [object, box] : meshBoxes[instance.mesh]) {
+            const FloatBox moved = instanceBox(instance, FloatBox{glm::vec3(box.min), glm::vec3(box.max)});
+            result.push_back(DoubleBox{glm::dvec3(moved.min), glm::dvec3(moved.max)});
+        }
     return result;
 }
 
@@ -77,14 +94,15 @@ bool closedMesh(std::vector<Edge>& edges) {
     return true;
 }
 
-// The objects whose triangles that `counts` are not a closed, consistently wound mesh.
+// The objects among triangles [begin, end) whose triangles that `counts` are not a closed,
+// consistently wound mesh.
 template <class Counts>
-std::set<std::uint32_t> openObjects(const Scene& scene, Counts counts) {
+std::set<std::uint32_t> openObjects(const Scene& scene, std::uint32_t begin, std::uint32_t end, Counts counts) {
     // The counted triangles object by object (a loader writes each object's triangles in a run,
     // which the stable sort keeps), so that one object's edges are held at a time.
     std::vector<std::uint32_t> order;
-    order.reserve(scene.triangles.size());
-    for (std::uint32_t i = 0; i < scene.triangles.size(); ++i)
+    order.reserve(end - begin);
+    for (std::uint32_t i = begin; i < end; ++i)
         if (counts(scene.triangles[i])) order.push_back(i);
     auto byObject = [&](std::uint32_t a, std::uint32_t b) { return scene.triangles[a].object < scene.triangles[b].object; };
     if (!std::is_sorted(order.begin(), order.end(), byObject)) std::stable_sort(order.begin(), order.end(), byObject);
@@ -92,16 +110,31 @@ std::set<std::uint32_t> openObjects(const Scene& scene, Counts counts) {
     std::vector<Edge> edges;
     for (std::size_t first = 0; first < order.size();) {
         const std::uint32_t object = scene.triangles[order[first]].object;
-        std::size_t end = first;
-        while (end < order.size() && scene.triangles[order[end]].object == object) ++end;
+        std::size_t last = first;
+        while (last < order.size() && scene.triangles[order[last]].object == object) ++last;
         edges.clear();
-        edges.reserve(3 * (end - first));
-        for (std::size_t k = first; k < end; ++k) {
+        edges.reserve(3 * (last - first));
+        for (std::size_t k = first; k < last; ++k) {
             const Triangle& t = scene.triangles[order[k]];
             for (int i = 0; i < 3; ++i) edges.push_back(edge(t.position[i], t.position[(i + 1) % 3]));
         }
         if (!closedMesh(edges)) open.insert(object);
-        first = end;
+        first = last;
+    }
+    return open;
+}
+
+// The same over the whole scene: an instance's objects are open where its mesh's are (a transform
+// keeps a mesh closed, and a mirroring one its winding consistent), each mesh examined once.
+template <class Counts>
+std::set<std::uint32_t> openObjects(const Scene& scene, Counts counts) {
+    std::set<std::uint32_t> open = openObjects(scene, 0, worldTriangleCount(scene), counts);
+    for (std::uint32_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
+        const std::set<std::uint32_t> local = openObjects(scene, mesh.first, mesh.first + mesh.count, counts);
+        for (const Instance& instance : scene.instances)
+            if (instance.mesh == m)
+                for (std::uint32_t object : local) open.insert(instance.firstObject + object);
     }
     return open;
 }
@@ -139,6 +172,12 @@ std::set<std::uint32_t> opaqueObjectsMetFromBehind(const Scene& scene, const std
     return metFromBehind;
 }
 
+double sceneDiagonal(const Scene& scene) {
+    if (scene.instances.empty()) return sceneDiagonal(scene.triangles);
+    const FloatBox box = worldBox(scene);
+    return glm::length(glm::dvec3(box.max) - glm::dvec3(box.min));
+}
+
 double sceneDiagonal(const std::vector<Triangle>& triangles) {
     DoubleBox box;
     for (const Triangle& t : triangles)
@@ -174,7 +213,7 @@ SceneFeatures analyseScene(const Scene& scene) {
     f.mediumPriorities = glassPriorities.size() > 1;
     const std::vector<DoubleBox> boxes = glassObjectBoxes(scene);
     f.glassObjects = std::uint32_t(boxes.size());
-    f.touchingDistance = kTouchingTolerance * sceneDiagonal(scene.triangles);
+    f.touchingDistance = kTouchingTolerance * sceneDiagonal(scene);
     // Boxes grown by twice the touching distance: a probe reaches that far on either side of a hit.
     const double margin = 2.0 * f.touchingDistance;
     std::vector<std::uint32_t> overlaps(boxes.size(), 0);
@@ -185,22 +224,37 @@ SceneFeatures analyseScene(const Scene& scene) {
     const std::uint32_t mostOverlaps = overlaps.empty() ? 0 : *std::max_element(overlaps.begin(), overlaps.end());
     // Overlapping boxes say that two objects may touch or one lie in the other; only the
     // triangles tell which (a bubble in a block is nested, never touching).
-    f.touchingMediaPossible = mostOverlaps > 0 && findCloseGlassTriangles(scene, margin).found;
-    f.opaqueContactPossible = f.glass && findGlassNearOpaque(scene, margin).found;
+    // With instances the triangles are not compared (an instance's are its mesh's, placed): what
+    // the boxes allow is taken as found, which costs probes, never images.
+    const bool instanced = !scene.instances.empty();
+    const bool opaque = (f.materialModels & ~(1u << std::uint32_t(MaterialModel::Glass))) != 0;
+    f.touchingMediaPossible = mostOverlaps > 0 && (instanced || findCloseGlassTriangles(scene, margin).found);
+    f.opaqueContactPossible = f.glass && (instanced ? opaque : findGlassNearOpaque(scene, margin).found);
     const std::set<std::uint32_t> open = openGlassObjects(scene);
     f.openGlassObjects = std::uint32_t(open.size());
     // A primary ray's media are those where it starts: off the camera's surface on its side.
-    const RayOffsetScale offsets = rayOffsetScale(scene.triangles);
-    f.cameraSurface = cameraSurface(scene, offsets);
+    const RayOffsetScale offsets = rayOffsetScale(scene);
+    // Where the scene has instances, those whose boxes hold the camera, moved to the world, with
+    // the world's triangles: all that the camera can lie on or inside.
+    const std::vector<FloatBox> meshes = meshBoxes(scene);
+    const Scene nearCamera = instanced ? flattened(scene, [&](const Instance& instance) {
+        const FloatBox box = instanceBox(instance, meshes[instance.mesh]);
+        return glm::all(glm::lessThanEqual(box.min - glm::vec3(float(margin)), scene.camera.from)) &&
+               glm::all(glm::lessThanEqual(scene.camera.from, box.max + glm::vec3(float(margin))));
+    }) : Scene{};
+    const Scene& cameraScene = instanced ? nearCamera : scene;
+    f.cameraSurface = cameraSurface(cameraScene, offsets);
     const glm::vec3 from = scene.camera.from;
     const glm::vec3 normal = f.cameraSurface.normal;
     // Where primary rays start: off the surface on each side of it, or at the camera.
     std::vector<glm::dvec3> primaryStarts = {glm::dvec3(offsetRayOrigin(from, normal, offsets))};
     if (f.cameraSurface.triangles != 0) primaryStarts.push_back(glm::dvec3(offsetRayOrigin(from, -normal, offsets)));
-    f.cameraMedia = cameraMedia(scene, open, primaryStarts.front());
-    f.cameraMediaBehind = primaryStarts.size() == 1 ? f.cameraMedia : cameraMedia(scene, open, primaryStarts.back());
+    f.cameraMedia = cameraMedia(cameraScene, open, primaryStarts.front());
+    f.cameraMediaBehind =
+        primaryStarts.size() == 1 ? f.cameraMedia : cameraMedia(cameraScene, open, primaryStarts.back());
     f.coincidentOpaquePossible =
-        findCloseOpaqueTriangles(scene, margin, opaqueObjectsMetFromBehind(scene, primaryStarts)).found;
+        instanced ? opaque
+                  : findCloseOpaqueTriangles(scene, margin, opaqueObjectsMetFromBehind(scene, primaryStarts)).found;
     if (f.cameraSurface.otherPlanes)
         warn(
             "the camera lies where surfaces meet at an angle (an edge or a corner): primary rays start off one "

@@ -99,6 +99,8 @@ std::set<std::uint32_t> opaqueObjectsMetFromBehind(const Scene& scene, const std
 
 // Length of the diagonal of the box around every triangle (0 for an empty scene).
 double sceneDiagonal(const std::vector<Triangle>& triangles);
+// The scene's: with instances, of the box around the world triangles and the instances' boxes.
+double sceneDiagonal(const Scene& scene);
 
 nlohmann::json toJson(const SceneFeatures& features);
 

@@ -38,7 +38,7 @@ int infoCommand(int argc, char** argv, int first) {
     Scene scene = loadScene(argv[first], {.progress = phases.callback()});
     // The analysis beside the BVH build, as `vitrum render` runs them (both read only the triangles).
     std::future<SceneFeatures> analysis = std::async(std::launch::async, [&] { return analyseScene(scene); });
-    Bvh bvh = buildBvh(scene.triangles, [&](double fraction) { phases.update("building the BVH", fraction); });
+    Bvh bvh = buildSceneBvh(scene, [&](double fraction) { phases.update("building the BVH", fraction); });
     phases.finish();
     const SceneFeatures features = analysis.get();
     std::map<std::uint32_t, std::size_t> trianglesPerMaterial;
@@ -46,6 +46,13 @@ int infoCommand(int argc, char** argv, int first) {
 
     std::printf("scene: %s\n", scene.source.string().c_str());
     std::printf("triangles: %zu in %zu objects\n", scene.triangles.size(), scene.objectNames.size());
+    if (!scene.instances.empty()) {
+        // What instancing saves (docs/gpu-design.md, "Instancing"): the triangles placed.
+        std::uint64_t placed = worldTriangleCount(scene);
+        for (const Instance& instance : scene.instances) placed += scene.meshes[instance.mesh].count;
+        std::printf("instances: %zu of %zu meshes, %llu triangles placed (%zu stored)\n", scene.instances.size(),
+                    scene.meshes.size(), static_cast<unsigned long long>(placed), scene.triangles.size());
+    }
     std::printf("materials: %zu\n", scene.materials.size());
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];

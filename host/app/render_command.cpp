@@ -137,6 +137,7 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
     PhaseProgress phases;  // loading and building a big model take seconds (issue 52)
     SceneLoadOptions loadOptions{texelLimit, phases.callback()};
     loadOptions.camera = command.camera;
+    loadOptions.instancing = command.instancing;
     if (device)
         loadOptions.checkTriangles = [&](std::size_t triangles) {
             checkSceneFitsDevice(*device, triangles, sceneGeometryAtLeast(triangles), nullptr, command.gpu.tileSize);
@@ -163,7 +164,7 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
             SceneFeatures features = analyseScene(scene);
             return std::pair(std::move(features), std::chrono::duration<double>(Clock::now() - analysisStart).count());
         });
-        bvh = buildBvh(scene.triangles, [&](double fraction) { phases.update("building the BVH", fraction); });
+        bvh = buildSceneBvh(scene, [&](double fraction) { phases.update("building the BVH", fraction); });
         phases.finish();
         stats.addPhase("bvh", bvh.stats.buildSeconds);
         const auto [features, analysisSeconds] = analysis.get();
@@ -232,6 +233,7 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
                             {"min_weight", scene.settings.minWeight},
                             {"fresnel", int(scene.settings.fresnel)}};
         json["triangles"] = scene.triangles.size();
+        if (!scene.instances.empty()) json["instances"] = scene.instances.size();
         if (job) json["distributed"] = toJson(distributed);
         writeFileAtomically(command.statsPath, json.dump(2) + "\n");
     }

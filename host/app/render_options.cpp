@@ -70,6 +70,8 @@ docs/distributed.md).
                            largest whose buffers fit an eighth of its memory: 'vitrum devices')
   --no-specialize          GPU: the general kernel instead of one built for what the scene
                            needs (same image; for comparison, docs/specialization.md)
+  --no-instancing          store every copy of a mesh that the scene places more than once
+                           (more memory, faster tracing; docs/scene-format.md, "Instancing")
 )";
 }
 
@@ -128,6 +130,7 @@ RenderCommand parseRenderCommand(int argc, char** argv, int first) {
         else if (flag == "--iteration-budget") c.gpu.iterationBudget = Arguments::toUint(flag, args.valueOf(flag), kMinIterationBudget, 1u << 24);
         else if (flag == "--tile") c.gpu.tileSize = Arguments::toUint(flag, args.valueOf(flag), kMinTileSize, kMaxTileSize);
         else if (flag == "--no-specialize") c.gpu.specialize = false;
+        else if (flag == "--no-instancing") c.instancing = false;
         else if (flag.rfind("-", 0) == 0) throw InputError("unknown option " + flag + " (see vitrum render --help)");
         else if (c.scenePath.empty()) c.scenePath = flag;
         else throw InputError("more than one scene given: \"" + c.scenePath + "\" and \"" + flag + "\"");

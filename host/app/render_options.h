@@ -32,6 +32,7 @@ struct RenderCommand {
     std::optional<glm::vec3> from, at, up, background;
     std::vector<glm::vec3> lights;
     std::string camera;  // a glTF scene's camera by name
+    bool instancing = true;  // repeated meshes stored once (SceneLoadOptions::instancing)
 };
 
 // The command's help, its ranges and defaults from the constants the parser and the scene use.

@@ -27,6 +27,10 @@ struct Bvh {
     // Leaf ranges index triangles in BVH order; triangleOrder[i] is the scene triangle at BVH
     // position i.
     std::vector<std::uint32_t> triangleOrder;
+    // A scene with instances (gpu_types.h, "Instances"): nodes begin with the top-level tree,
+    // whose leaves (count 0) are these: the scene's instances in order, then the world triangles'
+    // tree as an identity instance (where the scene has world triangles). Empty otherwise.
+    std::vector<gpu::GpuInstance> instances;
     BvhStats stats;
 };
 
@@ -34,6 +38,10 @@ struct Bvh {
 // `threads` build it (0: one a core); the tree is the same however many.
 Bvh buildBvh(std::span<const Triangle> triangles, const std::function<void(double)>& progress = {},
              unsigned threads = 0);
+
+// The scene's: buildBvh of its triangles without instances, else the two levels (a tree of each
+// mesh's triangles, each position in triangleOrder within its mesh's range of Scene::triangles).
+Bvh buildSceneBvh(const Scene& scene, const std::function<void(double)>& progress = {}, unsigned threads = 0);
 
 }  // namespace vitrum
 

@@ -16,9 +16,12 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "bvh/bvh.h"
+#include "scene/instances.h"
 
 namespace vitrum {
 namespace {
@@ -31,6 +34,17 @@ constexpr float kIntersectionCost = 1.0f;  // C_isect
 // entries; this keeps a margin below gpu::kTraversalStackSize.
 constexpr std::uint32_t kMaxTreeDepth = gpu::kTraversalStackSize - 4;
 static_assert(kMaxTreeDepth + 2 <= gpu::kTraversalStackSize);
+// With instances, the stack holds the top level's pending siblings, the entry that leaves an
+// instance and a mesh's (gpu_types.h, "Instances"): the two trees share the depth.
+constexpr std::uint32_t kMaxTopLevelDepth = 22;
+constexpr std::uint32_t kMaxMeshTreeDepth = kMaxTreeDepth - kMaxTopLevelDepth - 1;
+static_assert(kMaxTopLevelDepth + 1 + kMaxMeshTreeDepth + 2 <= gpu::kTraversalStackSize);
+
+// What a tree may be: how deep, and how many primitives a leaf.
+struct TreeLimits {
+    std::uint32_t depth = kMaxTreeDepth;
+    std::uint32_t leafSize = gpu::kMaxLeafTriangles;
+};
 
 struct Box {
     glm::vec3 min{std::numeric_limits<float>::infinity()};
@@ -54,9 +68,9 @@ struct Box {
 };
 
 // Depth of the tree that halving by count produces: the depth a median split guarantees.
-std::uint32_t medianSplitDepth(std::uint32_t count) {
+std::uint32_t medianSplitDepth(std::uint32_t count, std::uint32_t leafSize) {
     std::uint32_t depth = 0;
-    while (count > gpu::kMaxLeafTriangles) {
+    while (count > leafSize) {
         count = (count + 1) / 2;
         ++depth;
     }
@@ -74,6 +88,7 @@ struct Primitive {
 // range of them), and the root's area.
 struct BuildInput {
     std::vector<Primitive> primitives;
+    TreeLimits limits;
     double rootArea = 1.0;
     const std::function<void(double)>& progress;  // called by the part on the calling thread only
     std::atomic<std::size_t> placed{0};           // triangles in the leaves made so far, all parts
@@ -174,7 +189,7 @@ private:
     }
 
     void makeLeaf(std::uint32_t index, const Box& box, std::uint32_t first, std::uint32_t count, double area) {
-        assert(count >= 1 && count <= gpu::kMaxLeafTriangles);
+        assert(count >= 1 && count <= in_.limits.leafSize);
         gpu::BvhNode& node = nodes[index];
         node.boundsMin = glm::vec4(box.min, std::bit_cast<float>(first));
         node.boundsMax = glm::vec4(box.max, std::bit_cast<float>(count));
@@ -194,16 +209,17 @@ private:
                      const Box& centroidBox, std::uint32_t& mid, std::uint32_t& axis) {
         std::vector<Primitive>& primitives = in_.primitives;
         const std::uint32_t count = end - begin;
-        if (count <= 2) return false;
+        if (count <= 2 && count <= in_.limits.leafSize) return false;
 
         const glm::vec3 extent = centroidBox.max - centroidBox.min;
         axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
 
-        // Invariant: depth + medianSplitDepth(count) <= kMaxTreeDepth, so halving always fits.
+        // Invariant: depth + medianSplitDepth(count) <= the depth limit, so halving always fits.
         // An SAH split may leave up to count - 1 triangles on one side; when that could break
         // the invariant, split at the median instead.
-        if (depth + 1 + medianSplitDepth(count - 1) > kMaxTreeDepth) {
-            if (count <= gpu::kMaxLeafTriangles) return false;
+        const TreeLimits& limits = in_.limits;
+        if (depth + 1 + medianSplitDepth(count - 1, limits.leafSize) > limits.depth) {
+            if (count <= limits.leafSize) return false;
             mid = begin + count / 2;
             if (extent[axis] > 0.0f) {
                 std::nth_element(primitives.begin() + begin, primitives.begin() + mid, primitives.begin() + end,
@@ -270,7 +286,7 @@ private:
         if (bestAxis < 0) {
             // All centroids equal (duplicates, or triangles sharing one centre): no spatial
             // split exists. Split by index until leaves are small enough.
-            if (count <= gpu::kMaxLeafTriangles) return false;
+            if (count <= limits.leafSize) return false;
             mid = begin + count / 2;
             return true;
         }
@@ -278,7 +294,7 @@ private:
         const float area = box.area();
         const float splitCost = kTraversalCost * area + kIntersectionCost * bestCost;
         const float leafCost = kIntersectionCost * area * count;
-        if (count <= gpu::kMaxLeafTriangles && leafCost <= splitCost) return false;
+        if (count <= limits.leafSize && leafCost <= splitCost) return false;
 
         axis = static_cast<std::uint32_t>(bestAxis);
         auto* split = std::partition(primitives.data() + begin, primitives.data() + end, [&](const Primitive& p) {
@@ -303,12 +319,13 @@ private:
     std::size_t nextReport_ = 0;  // progress hears of it when the triangles placed reach this
 };
 
-}  // namespace
 
-Bvh buildBvh(std::span<const Triangle> triangles, const std::function<void(double)>& progress, unsigned threads) {
+// The tree over `primitives` (their indices 0, 1, ...) within `limits`.
+Bvh buildTree(std::vector<Primitive> primitives, const TreeLimits& limits, const std::function<void(double)>& progress,
+              unsigned threads) {
     const auto start = std::chrono::steady_clock::now();
     Bvh bvh;
-    const std::size_t n = triangles.size();
+    const std::size_t n = primitives.size();
     bvh.triangleOrder.resize(n);
     if (n == 0) {
         // The empty scene: one leaf with no triangles and a degenerate box at the origin, so
@@ -321,15 +338,10 @@ Bvh buildBvh(std::span<const Triangle> triangles, const std::function<void(doubl
         bvh.stats.leafCount = 1;
     } else {
         BuildInput input{.progress = progress};
-        input.primitives.resize(n);
+        input.primitives = std::move(primitives);
+        input.limits = limits;
         Box root;
-        for (std::size_t i = 0; i < n; ++i) {
-            Box b;
-            for (const glm::vec3& p : triangles[i].position) b.grow(p);
-            // The box centre as centroid: cheaper and as good as the mean.
-            input.primitives[i] = {b, 0.5f * (b.min + b.max), static_cast<std::uint32_t>(i)};
-            root.grow(b);
-        }
+        for (const Primitive& p : input.primitives) root.grow(p.bounds);
         const double rootArea = root.area();
         input.rootArea = rootArea > 0.0 ? rootArea : 1.0;  // a zero-area scene: plain counts
         if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
@@ -343,6 +355,117 @@ Bvh buildBvh(std::span<const Triangle> triangles, const std::function<void(doubl
         bvh.stats.maxDepth = builder.maxDepth;
         bvh.stats.maxLeafTriangles = builder.maxLeafTriangles;
         bvh.stats.sahCost = builder.sahSum;
+    }
+    if (progress) progress(1.0);
+    bvh.stats.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return bvh;
+}
+
+std::vector<Primitive> trianglePrimitives(std::span<const Triangle> triangles) {
+    std::vector<Primitive> primitives(triangles.size());
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+        Box b;
+        for (const glm::vec3& p : triangles[i].position) b.grow(p);
+        // The box centre as centroid: cheaper and as good as the mean.
+        primitives[i] = {b, 0.5f * (b.min + b.max), static_cast<std::uint32_t>(i)};
+    }
+    return primitives;
+}
+
+// Appends `tree`'s nodes to `nodes`, its triangles' positions moved on by `firstTriangle`; returns
+// where its root went.
+std::uint32_t appendTree(std::vector<gpu::BvhNode>& nodes, const Bvh& tree, std::uint32_t firstTriangle) {
+    const auto offset = static_cast<std::uint32_t>(nodes.size());
+    for (gpu::BvhNode node : tree.nodes) {
+        const bool interior = (std::bit_cast<std::uint32_t>(node.boundsMax.w) & gpu::kInteriorNodeFlag) != 0;
+        node.boundsMin.w =
+            std::bit_cast<float>(std::bit_cast<std::uint32_t>(node.boundsMin.w) + (interior ? offset : firstTriangle));
+        nodes.push_back(node);
+    }
+    return offset;
+}
+
+}  // namespace
+
+Bvh buildBvh(std::span<const Triangle> triangles, const std::function<void(double)>& progress, unsigned threads) {
+    return buildTree(trianglePrimitives(triangles), TreeLimits{}, progress, threads);
+}
+
+Bvh buildSceneBvh(const Scene& scene, const std::function<void(double)>& progress, unsigned threads) {
+    if (scene.instances.empty()) return buildBvh(scene.triangles, progress, threads);
+    if (scene.instances.size() >= (std::size_t(1) << kMaxTopLevelDepth))
+        throw std::length_error("a scene may have at most " + std::to_string((1u << kMaxTopLevelDepth) - 1) +
+                                " instances");
+    const auto start = std::chrono::steady_clock::now();
+    const TreeLimits meshLimits{kMaxMeshTreeDepth, gpu::kMaxLeafTriangles};
+    const std::uint32_t worldCount = worldTriangleCount(scene);
+    // The trees below the top level: the world triangles' (where there are any), then each mesh's.
+    std::vector<Bvh> trees;
+    std::vector<std::uint32_t> firsts;
+    if (worldCount > 0) {
+        trees.push_back(buildTree(trianglePrimitives(std::span(scene.triangles).first(worldCount)), meshLimits, {}, threads));
+        firsts.push_back(0);
+    }
+    for (const Mesh& mesh : scene.meshes) {
+        trees.push_back(buildTree(trianglePrimitives(std::span(scene.triangles).subspan(mesh.first, mesh.count)),
+                                  meshLimits, {}, threads));
+        firsts.push_back(mesh.first);
+    }
+    if (progress) progress(0.5);
+    // The top level: one leaf an instance (the world triangles' tree as an instance of its own).
+    const std::vector<FloatBox> meshes = meshBoxes(scene);
+    std::vector<Primitive> items;
+    for (std::uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const FloatBox b = instanceBox(scene.instances[i], meshes[scene.instances[i].mesh]);
+        items.push_back({Box{b.min, b.max}, 0.5f * (b.min + b.max), i});
+    }
+    if (worldCount > 0) {
+        const gpu::BvhNode& root = trees.front().nodes.front();
+        const Box b{glm::vec3(root.boundsMin), glm::vec3(root.boundsMax)};
+        items.push_back({b, 0.5f * (b.min + b.max), std::uint32_t(scene.instances.size())});
+    }
+    Bvh bvh = buildTree(std::move(items), TreeLimits{kMaxTopLevelDepth, 1}, {}, threads);
+    for (gpu::BvhNode& node : bvh.nodes) {
+        if (std::bit_cast<std::uint32_t>(node.boundsMax.w) & gpu::kInteriorNodeFlag) continue;
+        node.boundsMin.w = std::bit_cast<float>(bvh.triangleOrder[std::bit_cast<std::uint32_t>(node.boundsMin.w)]);
+        node.boundsMax.w = std::bit_cast<float>(0u);  // count 0: an instance
+    }
+    bvh.stats.maxDepth += 1;  // with the mesh trees' below
+    std::vector<std::uint32_t> roots;
+    for (std::size_t t = 0; t < trees.size(); ++t) {
+        roots.push_back(appendTree(bvh.nodes, trees[t], firsts[t]));
+        bvh.stats.leafCount += trees[t].stats.leafCount;
+        bvh.stats.maxLeafTriangles = std::max(bvh.stats.maxLeafTriangles, trees[t].stats.maxLeafTriangles);
+    }
+    std::uint32_t deepest = 0;
+    for (const Bvh& tree : trees) deepest = std::max(deepest, tree.stats.maxDepth);
+    bvh.stats.maxDepth += deepest;
+    bvh.stats.nodeCount = std::uint32_t(bvh.nodes.size());
+    bvh.triangleOrder.assign(scene.triangles.size(), 0);
+    for (std::size_t t = 0; t < trees.size(); ++t)
+        for (std::size_t i = 0; i < trees[t].triangleOrder.size(); ++i)
+            bvh.triangleOrder[firsts[t] + i] = firsts[t] + trees[t].triangleOrder[i];
+    const std::uint32_t meshTreeOffset = worldCount > 0 ? 1 : 0;
+    for (const Instance& instance : scene.instances) {
+        gpu::GpuInstance g{};
+        const glm::mat4 toObject = glm::transpose(instance.worldToObject);  // rows as columns
+        const glm::mat4 toWorld = glm::transpose(instance.objectToWorld);
+        g.toObject0 = toObject[0];
+        g.toObject1 = toObject[1];
+        g.toObject2 = toObject[2];
+        g.toWorld0 = toWorld[0];
+        g.toWorld1 = toWorld[1];
+        g.toWorld2 = toWorld[2];
+        g.info = glm::uvec4(roots[meshTreeOffset + instance.mesh], 0u, instance.firstObject, 0u);
+        bvh.instances.push_back(g);
+    }
+    if (worldCount > 0) {
+        gpu::GpuInstance world{};
+        world.toObject0 = world.toWorld0 = glm::vec4(1, 0, 0, 0);
+        world.toObject1 = world.toWorld1 = glm::vec4(0, 1, 0, 0);
+        world.toObject2 = world.toWorld2 = glm::vec4(0, 0, 1, 0);
+        world.info = glm::uvec4(roots[0], 0u, 0u, gpu::kIdentityInstance);
+        bvh.instances.push_back(world);
     }
     if (progress) progress(1.0);
     bvh.stats.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -50,16 +50,38 @@ bool hitsBox(const gpu::BvhNode& node, const Vec3<Real>& origin, const Vec3<Real
     return enter <= leave;
 }
 
-// Walks the tree, calling onLeaf(first, count, tMax&) for every leaf whose box the ray enters
-// before the current tMax; onLeaf returns true to stop the traversal.
+}  // namespace
+
+// The ray in an instance's space (gpu_types.h, "Instances"): the direction is not normalized, so
+// that t is the world's. The same operations in the same order as shaders/bvh.glsl's
+// rayIntoInstance: ((r.x x + r.y y) + r.z z) + r.w for a point, without r.w for a direction.
+template <class Real>
+Ray<Real> rayIntoInstance(const gpu::GpuInstance& instance, const Ray<Real>& ray) {
+    const glm::vec4* rows[3] = {&instance.toObject0, &instance.toObject1, &instance.toObject2};
+    Ray<Real> local = ray;
+    for (int a = 0; a < 3; ++a) {
+        const Vec3<Real> r = toReal<Real>(*rows[a]);
+        local.origin[a] = r.x * ray.origin.x + r.y * ray.origin.y + r.z * ray.origin.z + Real(rows[a]->w);
+        local.direction[a] = r.x * ray.direction.x + r.y * ray.direction.y + r.z * ray.direction.z;
+    }
+    return local;
+}
+
+namespace {
+
+// Walks the tree from node `root`, calling onLeaf(first, count, tMax&, ray, instance) for every
+// leaf whose box the ray enters before the current tMax, with the ray in the space of the
+// instance the leaf is in (kNoInstance: the world); onLeaf returns true to stop the traversal,
+// and so does this. A leaf of count 0 is an instance: its mesh's tree is walked at once, depth
+// first, as the GPU's traversal does.
 template <class Real, class OnLeaf>
-void traverse(std::span<const gpu::BvhNode> nodes, const Ray<Real>& ray, Real& tMax, TraversalCounters* counters,
-              OnLeaf&& onLeaf) {
-    if (nodes.empty()) return;
+bool traverseFrom(std::span<const gpu::BvhNode> nodes, std::span<const gpu::GpuInstance> instances,
+                  std::uint32_t root, const Ray<Real>& ray, std::uint32_t instance, Real& tMax,
+                  TraversalCounters* counters, OnLeaf& onLeaf) {
     const Vec3<Real> inverseDirection = Real(1) / ray.direction;  // 1/0 -> inf on purpose
     std::uint32_t stack[gpu::kTraversalStackSize];
     std::uint32_t size = 0;
-    stack[size++] = 0;
+    stack[size++] = root;
     while (size > 0) {
         const std::uint32_t index = stack[--size];
         const gpu::BvhNode& node = nodes[index];
@@ -68,7 +90,16 @@ void traverse(std::span<const gpu::BvhNode> nodes, const Ray<Real>& ray, Real& t
         const std::uint32_t link = std::bit_cast<std::uint32_t>(node.boundsMin.w);
         const std::uint32_t meta = std::bit_cast<std::uint32_t>(node.boundsMax.w);
         if ((meta & gpu::kInteriorNodeFlag) == 0) {
-            if (onLeaf(link, meta, tMax)) return;
+            if (meta == 0 && !instances.empty()) {
+                const gpu::GpuInstance& entered = instances[link];
+                const bool identity = entered.info.w == gpu::kIdentityInstance;
+                const Ray<Real> local = identity ? ray : rayIntoInstance(entered, ray);
+                if (traverseFrom(nodes, instances, entered.info.x, local, identity ? gpu::kNoInstance : link, tMax,
+                                 counters, onLeaf))
+                    return true;
+                continue;
+            }
+            if (onLeaf(link, meta, tMax, ray, instance)) return true;
             continue;
         }
         // The builder bounds the depth so that this cannot overflow (bvh_builder.cpp).
@@ -79,6 +110,14 @@ void traverse(std::span<const gpu::BvhNode> nodes, const Ray<Real>& ray, Real& t
         stack[size++] = negative ? index + 1 : link;
         stack[size++] = negative ? link : index + 1;
     }
+    return false;
+}
+
+template <class Real, class OnLeaf>
+void traverse(const TraversalInput& bvh, const Ray<Real>& ray, Real& tMax, TraversalCounters* counters,
+              OnLeaf&& onLeaf) {
+    if (bvh.nodes.empty()) return;
+    traverseFrom(bvh.nodes, bvh.instances, 0u, ray, gpu::kNoInstance, tMax, counters, onLeaf);
 }
 
 }  // namespace
@@ -131,77 +170,76 @@ std::optional<TriangleHit<Real>> intersectTriangle(const gpu::TriangleVertices& 
 }
 
 template <class Real>
-std::optional<TriangleHit<Real>> traceClosest(std::span<const gpu::BvhNode> nodes,
-                                              std::span<const gpu::TriangleVertices> triangles,
-                                              const Ray<Real>& ray, TraversalCounters* counters) {
+std::optional<TriangleHit<Real>> traceClosest(const TraversalInput& bvh, const Ray<Real>& ray,
+                                              TraversalCounters* counters) {
     std::optional<TriangleHit<Real>> closest;
     Real tMax = ray.tMax;
-    Ray<Real> probe = ray;
-    traverse(nodes, ray, tMax, counters, [&](std::uint32_t first, std::uint32_t count, Real& currentMax) {
-        probe.tMax = currentMax;
-        for (std::uint32_t i = first; i < first + count; ++i) {
-            if (counters) counters->triangleTests += 1;
-            // tMax shrinks to the closest t: a later hit must be strictly nearer to replace it.
-            if (auto hit = intersectTriangle(triangles[i], probe)) {
-                hit->triangle = i;
-                closest = hit;
-                probe.tMax = hit->t;
-            }
-        }
-        currentMax = probe.tMax;
-        return false;
-    });
+    traverse(bvh, ray, tMax, counters,
+             [&](std::uint32_t first, std::uint32_t count, Real& currentMax, const Ray<Real>& local, std::uint32_t instance) {
+                 Ray<Real> probe = local;
+                 probe.tMax = currentMax;
+                 for (std::uint32_t i = first; i < first + count; ++i) {
+                     if (counters) counters->triangleTests += 1;
+                     // tMax shrinks to the closest t: a later hit must be strictly nearer to replace it.
+                     if (auto hit = intersectTriangle(bvh.triangles[i], probe)) {
+                         hit->triangle = i;
+                         hit->instance = instance;
+                         closest = hit;
+                         probe.tMax = hit->t;
+                     }
+                 }
+                 currentMax = probe.tMax;
+                 return false;
+             });
     return closest;
 }
 
 template <class Real>
-bool traceAny(std::span<const gpu::BvhNode> nodes, std::span<const gpu::TriangleVertices> triangles,
-              const Ray<Real>& ray, TraversalCounters* counters) {
+bool traceAny(const TraversalInput& bvh, const Ray<Real>& ray, TraversalCounters* counters) {
     bool found = false;
     Real tMax = ray.tMax;
-    traverse(nodes, ray, tMax, counters, [&](std::uint32_t first, std::uint32_t count, Real&) {
-        for (std::uint32_t i = first; i < first + count; ++i) {
-            if (counters) counters->triangleTests += 1;
-            if (intersectTriangle(triangles[i], ray)) {
-                found = true;
-                return true;
-            }
-        }
-        return false;
-    });
+    traverse(bvh, ray, tMax, counters,
+             [&](std::uint32_t first, std::uint32_t count, Real&, const Ray<Real>& local, std::uint32_t) {
+                 for (std::uint32_t i = first; i < first + count; ++i) {
+                     if (counters) counters->triangleTests += 1;
+                     if (intersectTriangle(bvh.triangles[i], local)) {
+                         found = true;
+                         return true;
+                     }
+                 }
+                 return false;
+             });
     return found;
 }
 
 template <class Real>
-void traceAll(std::span<const gpu::BvhNode> nodes, std::span<const gpu::TriangleVertices> triangles,
-              const Ray<Real>& ray, std::vector<TriangleHit<Real>>& hits, TraversalCounters* counters) {
+void traceAll(const TraversalInput& bvh, const Ray<Real>& ray, std::vector<TriangleHit<Real>>& hits,
+              TraversalCounters* counters) {
     Real tMax = ray.tMax;
-    traverse(nodes, ray, tMax, counters, [&](std::uint32_t first, std::uint32_t count, Real&) {
-        for (std::uint32_t i = first; i < first + count; ++i) {
-            if (counters) counters->triangleTests += 1;
-            if (auto hit = intersectTriangle(triangles[i], ray)) {
-                hit->triangle = i;
-                hits.push_back(*hit);
-            }
-        }
-        return false;
-    });
+    traverse(bvh, ray, tMax, counters,
+             [&](std::uint32_t first, std::uint32_t count, Real&, const Ray<Real>& local, std::uint32_t instance) {
+                 for (std::uint32_t i = first; i < first + count; ++i) {
+                     if (counters) counters->triangleTests += 1;
+                     if (auto hit = intersectTriangle(bvh.triangles[i], local)) {
+                         hit->triangle = i;
+                         hit->instance = instance;
+                         hits.push_back(*hit);
+                     }
+                 }
+                 return false;
+             });
 }
 
 template std::optional<TriangleHit<float>> intersectTriangle(const gpu::TriangleVertices&, const Ray<float>&);
 template std::optional<TriangleHit<double>> intersectTriangle(const gpu::TriangleVertices&, const Ray<double>&);
-template std::optional<TriangleHit<float>> traceClosest(std::span<const gpu::BvhNode>,
-                                                        std::span<const gpu::TriangleVertices>, const Ray<float>&,
-                                                        TraversalCounters*);
-template std::optional<TriangleHit<double>> traceClosest(std::span<const gpu::BvhNode>,
-                                                         std::span<const gpu::TriangleVertices>, const Ray<double>&,
-                                                         TraversalCounters*);
-template bool traceAny(std::span<const gpu::BvhNode>, std::span<const gpu::TriangleVertices>, const Ray<float>&,
-                       TraversalCounters*);
-template bool traceAny(std::span<const gpu::BvhNode>, std::span<const gpu::TriangleVertices>, const Ray<double>&,
-                       TraversalCounters*);
-template void traceAll(std::span<const gpu::BvhNode>, std::span<const gpu::TriangleVertices>, const Ray<float>&,
-                       std::vector<TriangleHit<float>>&, TraversalCounters*);
-template void traceAll(std::span<const gpu::BvhNode>, std::span<const gpu::TriangleVertices>, const Ray<double>&,
-                       std::vector<TriangleHit<double>>&, TraversalCounters*);
+#define VITRUM_TRAVERSAL_FOR(Real)                                                                                 \
+    template std::optional<TriangleHit<Real>> traceClosest(const TraversalInput&, const Ray<Real>&,               \
+                                                           TraversalCounters*);                                   \
+    template bool traceAny(const TraversalInput&, const Ray<Real>&, TraversalCounters*);                          \
+    template void traceAll(const TraversalInput&, const Ray<Real>&, std::vector<TriangleHit<Real>>&,              \
+                           TraversalCounters*);                                                                   \
+    template Ray<Real> rayIntoInstance(const gpu::GpuInstance&, const Ray<Real>&);
+VITRUM_TRAVERSAL_FOR(float)
+VITRUM_TRAVERSAL_FOR(double)
+#undef VITRUM_TRAVERSAL_FOR
 }  // namespace vitrum

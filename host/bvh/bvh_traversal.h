@@ -27,6 +27,15 @@ struct TriangleHit {
     Real t;
     Real u, v;               // barycentrics of v1 and v2
     std::uint32_t triangle;  // index in BVH order
+    std::uint32_t instance = gpu::kNoInstance;  // the copy of its mesh (Bvh::instances), or none
+};
+
+// What a traversal walks: the flattened nodes (bvh.h), the triangles in BVH order and, for a
+// scene with instances, the instances the top-level leaves name (Bvh::instances).
+struct TraversalInput {
+    std::span<const gpu::BvhNode> nodes;
+    std::span<const gpu::TriangleVertices> triangles;
+    std::span<const gpu::GpuInstance> instances = {};
 };
 
 struct TraversalCounters {
@@ -37,20 +46,42 @@ struct TraversalCounters {
 template <class Real>
 std::optional<TriangleHit<Real>> intersectTriangle(const gpu::TriangleVertices& tri, const Ray<Real>& ray);
 
+// The ray in an instance's space, as both traversals move it (gpu_types.h, "Instances").
 template <class Real>
-std::optional<TriangleHit<Real>> traceClosest(std::span<const gpu::BvhNode> nodes,
-                                              std::span<const gpu::TriangleVertices> triangles,
-                                              const Ray<Real>& ray, TraversalCounters* counters = nullptr);
+Ray<Real> rayIntoInstance(const gpu::GpuInstance& instance, const Ray<Real>& ray);
+
+// The closest hit with tMin < t < tMax; a hit in an instance has t, u, v of the mesh's triangle
+// along the ray moved into the instance's space.
+template <class Real>
+std::optional<TriangleHit<Real>> traceClosest(const TraversalInput& bvh, const Ray<Real>& ray,
+                                              TraversalCounters* counters = nullptr);
 
 // True when any triangle is hit with tMin < t < tMax (shadow rays).
 template <class Real>
-bool traceAny(std::span<const gpu::BvhNode> nodes, std::span<const gpu::TriangleVertices> triangles,
-              const Ray<Real>& ray, TraversalCounters* counters = nullptr);
+bool traceAny(const TraversalInput& bvh, const Ray<Real>& ray, TraversalCounters* counters = nullptr);
 
 // Appends every triangle hit with tMin < t < tMax to `hits`, in traversal order. For short
 // intervals: the CPU reference uses it to find surfaces touching the one a ray just hit.
 template <class Real>
+void traceAll(const TraversalInput& bvh, const Ray<Real>& ray, std::vector<TriangleHit<Real>>& hits,
+              TraversalCounters* counters = nullptr);
+
+// The same over a tree without instances.
+template <class Real>
+std::optional<TriangleHit<Real>> traceClosest(std::span<const gpu::BvhNode> nodes,
+                                              std::span<const gpu::TriangleVertices> triangles,
+                                              const Ray<Real>& ray, TraversalCounters* counters = nullptr) {
+    return traceClosest(TraversalInput{nodes, triangles}, ray, counters);
+}
+template <class Real>
+bool traceAny(std::span<const gpu::BvhNode> nodes, std::span<const gpu::TriangleVertices> triangles,
+              const Ray<Real>& ray, TraversalCounters* counters = nullptr) {
+    return traceAny(TraversalInput{nodes, triangles}, ray, counters);
+}
+template <class Real>
 void traceAll(std::span<const gpu::BvhNode> nodes, std::span<const gpu::TriangleVertices> triangles,
-              const Ray<Real>& ray, std::vector<TriangleHit<Real>>& hits, TraversalCounters* counters = nullptr);
+              const Ray<Real>& ray, std::vector<TriangleHit<Real>>& hits, TraversalCounters* counters = nullptr) {
+    traceAll(TraversalInput{nodes, triangles}, ray, hits, counters);
+}
 
 }  // namespace vitrum

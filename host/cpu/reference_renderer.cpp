@@ -81,7 +81,7 @@ public:
           opaqueContactPossible_(features.opaqueContactPossible),
           coincidentOpaquePossible_(features.coincidentOpaquePossible),
           minWeight_(Real(scene.settings.minWeight)),
-          offsetScale_(rayOffsetScale(scene.triangles)) {
+          offsetScale_(rayOffsetScale(scene)) {
         // Each object's medium's Cauchy B (0 without dispersion), in float as the GPU gets it;
         // the wavelength samples only where some medium disperses.
         for (std::uint32_t material : mediumMaterials_) {
@@ -196,11 +196,11 @@ private:
         const Real w0 = Real(1) - found.u - found.v;
         Hit hit;
         hit.t = found.t;
-        hit.position = w0 * v0 + found.u * v1 + found.v * v2;
-        const Vec3 edgeCross = windingNormal(found.triangle);
+        hit.position = pointToWorld(found.instance, w0 * v0 + found.u * v1 + found.v * v2);
+        const Vec3 edgeCross = windingNormal(found);
         const Real crossLength = glm::length(edgeCross);
-        const Vec3 interpolated =
-            w0 * Vec3(tri.normal[0]) + found.u * Vec3(tri.normal[1]) + found.v * Vec3(tri.normal[2]);
+        const Vec3 interpolated = normalToWorld(
+            found.instance, w0 * Vec3(tri.normal[0]) + found.u * Vec3(tri.normal[1]) + found.v * Vec3(tri.normal[2]));
         const Real length = glm::length(interpolated);
         const bool shadingValid = length > Real(0) && std::isfinite(length);
         // A triangle whose corners are collinear has no geometric normal but can still be hit by
@@ -212,8 +212,29 @@ private:
         hit.uv = w0 * glm::vec<2, Real>(tri.uv[0]) + found.u * glm::vec<2, Real>(tri.uv[1]) +
                  found.v * glm::vec<2, Real>(tri.uv[2]);
         hit.material = &scene_.materials[tri.material];
-        hit.object = tri.object;
+        hit.object = objectOf(found);
         return hit;
+    }
+
+    // Instances (gpu_types.h, "Instances"): a hit's point and normals move to the world, the
+    // normals by the inverse transpose (the world-to-object matrix's transpose), as the kernel's
+    // finishTrace moves them; its object is its instance's.
+    Vec3 pointToWorld(std::uint32_t instance, const Vec3& p) const {
+        if (instance == gpu::kNoInstance) return p;
+        const gpu::GpuInstance& g = bvh_.instances[instance];
+        const glm::vec4* rows[3] = {&g.toWorld0, &g.toWorld1, &g.toWorld2};
+        Vec3 world;
+        for (int a = 0; a < 3; ++a) world[a] = glm::dot(Vec3(*rows[a]), p) + Real(rows[a]->w);
+        return world;
+    }
+    Vec3 normalToWorld(std::uint32_t instance, const Vec3& n) const {
+        if (instance == gpu::kNoInstance) return n;
+        const gpu::GpuInstance& g = bvh_.instances[instance];
+        return n.x * Vec3(g.toObject0) + n.y * Vec3(g.toObject1) + n.z * Vec3(g.toObject2);
+    }
+    std::uint32_t objectOf(const TriangleHit<Real>& h) const {
+        const std::uint32_t object = scene_.triangles[bvh_.triangleOrder[h.triangle]].object;
+        return h.instance == gpu::kNoInstance ? object : object + bvh_.instances[h.instance].info.z;
     }
 
     // ---- Opaque materials: normal, Lambert, Phong (opaque dielectric), mirror ----------------
@@ -418,10 +439,11 @@ private:
         const std::size_t first = crossings.size();
         for (const TriangleHit<Real>& h : hits) {
             const Triangle& tri = scene_.triangles[bvh_.triangleOrder[h.triangle]];
-            if (scene_.materials[tri.material].model != MaterialModel::Glass || tri.object == hit.object) continue;
-            const Crossing crossing{tri.object, glm::dot(d, windingNormal(h.triangle)) < Real(0), h.t};
+            const std::uint32_t object = objectOf(h);
+            if (scene_.materials[tri.material].model != MaterialModel::Glass || object == hit.object) continue;
+            const Crossing crossing{object, glm::dot(d, windingNormal(h)) < Real(0), h.t};
             const auto known = std::find_if(crossings.begin() + first, crossings.end(),
-                                            [&](const Crossing& c) { return c.object == tri.object; });
+                                            [&](const Crossing& c) { return c.object == object; });
             if (known == crossings.end()) crossings.push_back(crossing);
             else if (h.t < known->t) *known = crossing;
         }
@@ -458,7 +480,7 @@ private:
             if (isGlass(h.triangle)) continue;
             if (nearer(h, opaque)) opaque = h;
             // Met from behind: the ray leaves through it.
-            const bool fromBehind = glm::dot(ray.direction, windingNormal(h.triangle)) > Real(0);
+            const bool fromBehind = glm::dot(ray.direction, windingNormal(h)) > Real(0);
             if (coincidentOpaquePossible_ && fromBehind && nearer(h, leaving)) leaving = h;
         }
         if (leaving) return *leaving;
@@ -470,26 +492,29 @@ private:
     std::optional<TriangleHit<Real>> closest(const Ray<Real>& ray, TraceCounters& counters) const {
         if constexpr (std::is_same_v<Real, float>)
             if (intersector_) return intersector_->closest(ray);
-        return traceClosest<Real>(bvh_.nodes, vertices_, ray, &counters.traversal);
+        return traceClosest<Real>(traversalInput(), ray, &counters.traversal);
     }
     bool any(const Ray<Real>& ray, TraceCounters& counters) const {
         if constexpr (std::is_same_v<Real, float>)
             if (intersector_) return intersector_->any(ray);
-        return traceAny<Real>(bvh_.nodes, vertices_, ray, &counters.traversal);
+        return traceAny<Real>(traversalInput(), ray, &counters.traversal);
     }
     void all(const Ray<Real>& ray, std::vector<TriangleHit<Real>>& hits, TraceCounters& counters) const {
         if constexpr (std::is_same_v<Real, float>)
             if (intersector_) return intersector_->all(ray, hits);
-        traceAll<Real>(bvh_.nodes, vertices_, ray, hits, &counters.traversal);
+        traceAll<Real>(traversalInput(), ray, hits, &counters.traversal);
     }
+    TraversalInput traversalInput() const { return {bvh_.nodes, vertices_, bvh_.instances}; }
 
-    // The triangle's normal as its corners wind (not unit length): a ray along d meets the
-    // triangle from the front where dot(d, n) < 0. The kernels' windingNormal
-    // (shaders/triangle_test.glsl) has the same operations.
-    Vec3 windingNormal(std::uint32_t triangle) const {
-        const gpu::TriangleVertices& tv = vertices_[triangle];
+    // The hit triangle's normal as its corners wind (not unit length), in the world: a ray along
+    // d meets the triangle from the front where dot(d, n) < 0. The kernels' windingNormal
+    // (shaders/triangle_test.glsl) has the same operations. An instance's moves as normals do, so
+    // that a mirroring instance's triangles face out as its flattened copy's do (whose winding
+    // the loaders reverse).
+    Vec3 windingNormal(const TriangleHit<Real>& h) const {
+        const gpu::TriangleVertices& tv = vertices_[h.triangle];
         const Vec3 v0(tv.v0);
-        return glm::cross(Vec3(tv.v1) - v0, Vec3(tv.v2) - v0);
+        return normalToWorld(h.instance, glm::cross(Vec3(tv.v1) - v0, Vec3(tv.v2) - v0));
     }
 
     // The place in a non-empty stack of the medium the ray is in: the innermost of those of the

@@ -13,6 +13,8 @@ static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(GpuLight) == 32);
 static_assert(sizeof(RenderParams) == 256);
 static_assert(sizeof(TraversalNode) == 16 * kTraversalNodeTexels);
+static_assert(sizeof(GpuInstance) == 16 * kGpuInstanceTexels && kGpuInstanceTexels == kGpuInstanceNodes * kTraversalNodeTexels);
+static_assert(kLeaveInstanceEntry == (kLeafEntryFlag | (kMaxInstances + 1u) << 4));
 static_assert(sizeof(RenderParams) == 16 * kRenderParamsTexels, "bindings.glsl's loadRenderParams reads every field");
 static_assert(sizeof(TriangleVertices) == 16 * kTriangleVerticesTexels);
 static_assert(sizeof(GpuMaterial) == 16 * kGpuMaterialTexels);

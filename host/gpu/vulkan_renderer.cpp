@@ -83,10 +83,11 @@ TraceBuffers makeBuffers(VulkanDevice& device, const Scene& scene, const Bvh& bv
     auto uploaded = [&](double fraction) {
         if (progress) progress("uploading the scene", fraction);
     };
-    rootEntry = traversalRootEntry(bvh.nodes);
-    b.add(gpu::kBindingNodes, makeTexelBufferWritten<gpu::TraversalNode>(
-                                  device, traversalNodeCount(bvh.nodes), "BVH nodes",
-                                  [&](std::span<gpu::TraversalNode> into) { writeTraversalNodes(bvh.nodes, into); }));
+    rootEntry = traversalRootEntry(bvh.nodes, bvh.instances);
+    b.add(gpu::kBindingNodes,
+          makeTexelBufferWritten<gpu::TraversalNode>(
+              device, traversalNodeCount(bvh.nodes, bvh.instances), "BVH nodes",
+              [&](std::span<gpu::TraversalNode> into) { writeTraversalNodes(bvh.nodes, into, bvh.instances); }));
     uploaded(1.0 / 3.0);
     const std::size_t triangles = bvh.triangleOrder.size();
     b.add(gpu::kBindingVertices, makeTexelBufferWritten<gpu::TriangleVertices>(
@@ -316,7 +317,8 @@ void renderVulkanTiles(VulkanDevice& device, const Scene& scene, const Bvh& bvh,
     firstPass.pipeline.bind(buffers.bound);
     stats.addPhase("pipeline", secondsSince(start));
 
-    TileLoop loop(device, buffers, makeRenderParams(scene, stats.features, rootEntry, options.iterationBudget),
+    TileLoop loop(device, buffers, makeRenderParams(scene, stats.features, rootEntry, options.iterationBudget,
+                                                   firstInstanceNode(bvh.nodes)),
                   kernel, sums, persistent, kernels, stats);
     stats.addPhase("compile", loop.compile(firstPass));
     if (options.progress) options.progress("rendering", 0.0);

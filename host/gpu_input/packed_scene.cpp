@@ -61,7 +61,7 @@ PackedTables packTables(const Scene& scene) {
 }
 
 PackedScene packScene(const Scene& scene, const Bvh& bvh) {
-    PackedScene packed{makeTraversalNodes(bvh.nodes), {}, {}, packTables(scene)};
+    PackedScene packed{makeTraversalNodes(bvh.nodes, bvh.instances), {}, {}, packTables(scene)};
     packed.vertices.resize(bvh.triangleOrder.size());
     packVertices(scene, bvh, packed.vertices);
     const ShadingPlan plan = planShading(scene, bvh);

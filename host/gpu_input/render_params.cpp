@@ -9,7 +9,7 @@
 namespace vitrum {
 
 gpu::RenderParams makeRenderParams(const Scene& scene, const SceneFeatures& features, std::uint32_t rootEntry,
-                                   std::uint32_t iterationBudget) {
+                                   std::uint32_t iterationBudget, std::uint32_t firstInstanceNode) {
     const Camera& camera = scene.camera;
     const glm::vec3 z = glm::normalize(camera.from - camera.at);
     const glm::vec3 x = glm::normalize(glm::cross(camera.up, z));
@@ -37,9 +37,9 @@ gpu::RenderParams makeRenderParams(const Scene& scene, const SceneFeatures& feat
     // it skips probes that could find nothing. The other two are the analysis's answers in both.
     gpu::setSurfaceChecks(p, features.glassObjects >= 2, features.opaqueContactPossible,
                           features.coincidentOpaquePossible);
-    const RayOffsetScale offsets = rayOffsetScale(scene.triangles);  // Waechter and Binder's, scaled to the scene
+    const RayOffsetScale offsets = rayOffsetScale(scene);  // Waechter and Binder's, scaled to the scene
     gpu::setThresholds(p, s.minWeight, float(features.touchingDistance), offsets.origin, offsets.absolute);
-    gpu::setBvhRoot(p, rootEntry);
+    gpu::setBvhRoot(p, rootEntry, firstInstanceNode);
     return p;
 }
 

@@ -10,9 +10,9 @@
 
 namespace vitrum {
 
-// `rootEntry` is the BVH's (TraversalNodes::rootEntry); `iterationBudget` the loop steps a SIMD
-// group may run in a dispatch (VulkanRenderOptions).
+// `rootEntry` and `firstInstanceNode` are the BVH's (TraversalNodes); `iterationBudget` the loop
+// steps a SIMD group may run in a dispatch (VulkanRenderOptions).
 gpu::RenderParams makeRenderParams(const Scene& scene, const SceneFeatures& features, std::uint32_t rootEntry,
-                                   std::uint32_t iterationBudget);
+                                   std::uint32_t iterationBudget, std::uint32_t firstInstanceNode = 0);
 
 }  // namespace vitrum

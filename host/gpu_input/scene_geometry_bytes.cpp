@@ -13,7 +13,7 @@ SceneGeometryBytes sceneGeometryAtLeast(std::size_t triangles) {
 }
 
 SceneGeometryBytes sceneGeometry(const Bvh& bvh, const ShadingPlan& shading) {
-    return {traversalNodeCount(bvh.nodes) * sizeof(gpu::TraversalNode),
+    return {traversalNodeCount(bvh.nodes, bvh.instances) * sizeof(gpu::TraversalNode),
             bvh.triangleOrder.size() * sizeof(gpu::TriangleVertices), shading.texels() * sizeof(gpu::ShadingTexel)};
 }
 

@@ -27,6 +27,7 @@ TraceSpecialization TraceSpecialization::forScene(const Scene& scene, const Scen
     s.coincidentOpaque = f.coincidentOpaquePossible;
     s.mediumPriorities = f.mediumPriorities;
     s.dispersion = f.dispersion;
+    s.instancing = !scene.instances.empty();
     s.textures = f.textures;
     s.backgroundKind = std::uint32_t(f.background);
     s.fresnelModel = std::uint32_t(scene.settings.fresnel);
@@ -56,6 +57,7 @@ TraceKernelConstants TraceSpecialization::constants() const {
     c[gpu::kConstantCoincidentOpaque] = coincidentOpaque ? 1u : 0u;
     c[gpu::kConstantMediumPriorities] = mediumPriorities ? 1u : 0u;
     c[gpu::kConstantDispersion] = dispersion ? 1u : 0u;
+    c[gpu::kConstantInstancing] = instancing ? 1u : 0u;
     return c;
 }
 
@@ -88,6 +90,7 @@ std::vector<std::string> TraceSpecialization::describe() const {
         std::string("coincident opaque surfaces: ") + onOff(coincidentOpaque),
         std::string("overlapping media by priority: ") + onOff(mediumPriorities),
         std::string("dispersion: ") + onOff(dispersion),
+        std::string("instancing: ") + onOff(instancing),
         std::string("textures: ") + onOff(textures),
         "background: " + kindName(backgroundKind, backgroundKindName),
         "fresnel: " + kindName(fresnelModel, fresnelModelName),
@@ -109,6 +112,7 @@ nlohmann::json toJson(const TraceSpecialization& s) {
         {"coincident_opaque", s.coincidentOpaque},
         {"medium_priorities", s.mediumPriorities},
         {"dispersion", s.dispersion},
+        {"instancing", s.instancing},
         {"textures", s.textures},
         {"background", kindName(s.backgroundKind, backgroundKindName)},
         {"fresnel", kindName(s.fresnelModel, fresnelModelName)},

@@ -33,6 +33,7 @@ struct TraceSpecialization {
     bool coincidentOpaque = true;  // opaque surfaces of two objects may coincide (coincidentOpaquePossible)
     bool mediumPriorities = true;  // glass media of different priorities (SceneFeatures::mediumPriorities)
     bool dispersion = true;        // some glass disperses (SceneFeatures::dispersion)
+    bool instancing = true;        // the scene has instances: a two-level BVH (Scene::instances)
     bool textures = true;
     std::uint32_t backgroundKind = kAnyKind;  // BackgroundKind or kAnyKind
     std::uint32_t fresnelModel = kAnyKind;    // FresnelModel or kAnyKind

@@ -35,6 +35,7 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/instances.h"
 #include "scene/scene.h"
 
 namespace vitrum {
@@ -45,8 +46,15 @@ struct RayOffsetScale {
     float absolute = 1.0f / 65536.0f;    // the offset there, in float renders
 };
 
-// E = the longest side of the triangles' bounding box; an empty or single-point scene, or one with
-// non-finite coordinates, uses E = 1.
+// The scale for a scene whose box has sides `size` (E, the longest; E = 1 for an empty or
+// single-point scene, or one with non-finite coordinates).
+inline RayOffsetScale rayOffsetScaleOfBox(const glm::vec3& size, bool empty) {
+    float extent = std::max(size.x, std::max(size.y, size.z));
+    if (empty || !(extent > 0.0f) || !std::isfinite(extent)) extent = 1.0f;
+    return {extent / 32.0f, extent / 8388608.0f};
+}
+
+// E = the longest side of the triangles' bounding box.
 inline RayOffsetScale rayOffsetScale(std::span<const Triangle> triangles) {
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
     for (const Triangle& t : triangles)
@@ -54,10 +62,15 @@ inline RayOffsetScale rayOffsetScale(std::span<const Triangle> triangles) {
             lo = glm::min(lo, p);
             hi = glm::max(hi, p);
         }
-    const glm::vec3 size = hi - lo;
-    float extent = std::max(size.x, std::max(size.y, size.z));
-    if (triangles.empty() || !(extent > 0.0f) || !std::isfinite(extent)) extent = 1.0f;
-    return {extent / 32.0f, extent / 8388608.0f};
+    return rayOffsetScaleOfBox(hi - lo, triangles.empty());
+}
+
+// The scene's: its triangles' where it has no instances, else E of the box around the world
+// triangles and its instances' boxes (scene/instances.h).
+inline RayOffsetScale rayOffsetScale(const Scene& scene) {
+    if (scene.instances.empty()) return rayOffsetScale(scene.triangles);
+    const FloatBox box = worldBox(scene);
+    return rayOffsetScaleOfBox(box.max - box.min, false);
 }
 
 namespace detail {

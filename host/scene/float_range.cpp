@@ -1,5 +1,7 @@
 #include "scene/float_range.h"
 
+#include "scene/instances.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -41,12 +43,8 @@ std::string cameraProblem(const Camera& camera) {
 
 std::optional<LightProblem> lightProblem(const Scene& scene) {
     if (scene.lights.empty()) return std::nullopt;
-    glm::dvec3 low(std::numeric_limits<double>::max()), high(std::numeric_limits<double>::lowest());
-    for (const Triangle& t : scene.triangles)
-        for (const glm::vec3& p : t.position) {
-            low = glm::min(low, glm::dvec3(p));
-            high = glm::max(high, glm::dvec3(p));
-        }
+    const FloatBox box = worldBox(scene);  // the instances' boxes too
+    const glm::dvec3 low(box.min), high(box.max);
     for (std::size_t i = 0; i < scene.lights.size(); ++i) {
         const glm::dvec3 light(scene.lights[i].position);
         const glm::dvec3 near = scene.triangles.empty() ? light : low, far = scene.triangles.empty() ? light : high;

@@ -10,6 +10,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -23,6 +24,7 @@
 #include "common/file_extension.h"
 #include "image/image.h"
 #include "image/srgb.h"
+#include "scene/instances.h"
 #include "scene/mtl_material.h"
 #include "scene/quote_input.h"
 
@@ -158,20 +160,50 @@ public:
     GltfResult read() {
         parse();
         std::vector<int> roots = rootNodes();
+        // A mesh that two or more nodes place is stored once and placed by instances
+        // (docs/scene-format.md, "Instancing").
+        std::map<int, std::size_t> uses;
+        visit(roots, [&](int, const tinygltf::Node& node, const glm::dmat4&) {
+            if (node.mesh >= 0) ++uses[node.mesh];
+        });
+        auto instanced = [&](int mesh) { return load_.instancing && uses[mesh] >= 2; };
         // Triangles first counted, so that a scene too large for the device is refused before any
         // is made (SceneLoadOptions::checkTriangles), then made.
-        visit(roots, [&](int, const tinygltf::Node& node, const glm::dmat4&) {
-            if (node.mesh >= 0) trianglesToMake_ += meshTriangles(node.mesh);
-        });
+        for (const auto& [mesh, count] : uses) trianglesToMake_ += meshTriangles(mesh) * (instanced(mesh) ? 1 : count);
         if (load_.checkTriangles) load_.checkTriangles(scene_.triangles.size() + trianglesToMake_);
         const std::size_t firstTriangle = scene_.triangles.size();
         GltfResult result;
         std::vector<std::pair<int, glm::dmat4>> cameras;
+        std::map<int, std::vector<std::pair<int, glm::dmat4>>> placings;  // a mesh's nodes and their matrices
         visit(roots, [&](int index, const tinygltf::Node& node, const glm::dmat4& world) {
-            if (node.mesh >= 0) addMesh(index, node, world);
+            if (node.mesh >= 0 && instanced(node.mesh)) placings[node.mesh].emplace_back(index, world);
+            else if (node.mesh >= 0) addMesh(index, node, world);
             if (node.camera >= 0) cameras.emplace_back(node.camera, world);
             if (addLight(node, world)) ++result.lights;
         });
+        for (const auto& [meshIndex, nodes] : placings) {
+            const std::size_t meshFirst = scene_.triangles.size(), meshObject = scene_.objectNames.size();
+            addMesh(nodes.front().first, model_.nodes[std::size_t(nodes.front().first)], glm::dmat4(1.0));
+            if (scene_.triangles.size() == meshFirst) continue;
+            std::vector<std::string> names;
+            const std::uint32_t mesh = makeMesh(scene_, meshFirst, meshObject, names);
+            const FloatBox box = meshBoxes(scene_)[mesh];
+            for (const auto& [node, world] : nodes) {
+                Instance instance;
+                try {
+                    instance = makeInstance(mesh, std::uint32_t(scene_.objectNames.size()), glm::mat4(world));
+                } catch (const std::invalid_argument&) {
+                    fail("node " + std::to_string(node) + "'s matrix is singular or not finite");
+                }
+                const FloatBox placed = instanceBox(instance, box);
+                const glm::vec3 size = placed.max - placed.min;
+                if (!(std::isfinite(size.x) && std::isfinite(size.y) && std::isfinite(size.z)))
+                    fail("node " + std::to_string(node) + " moves its mesh's vertices beyond the range of float");
+                scene_.instances.push_back(instance);
+                scene_.objectNames.push_back(file_.filename().string() + "/" + nodeName(node, model_.nodes[std::size_t(node)]));
+            }
+        }
+        putMeshesLast(scene_);
         if (scene_.triangles.size() == firstTriangle) throw inputError(file_, 0, "contains no triangles");
         if (options_.takeCamera) result.camera = takeCamera(cameras);
         return result;
@@ -361,6 +393,11 @@ private:
             triangles += accessor(corners, "a primitive").count / 3;
         }
         return triangles;
+    }
+
+    std::string nodeName(int nodeIndex, const tinygltf::Node& node) const {
+        const tinygltf::Mesh& m = mesh(node.mesh);
+        return !node.name.empty() ? node.name : !m.name.empty() ? m.name : "node" + std::to_string(nodeIndex);
     }
 
     void addMesh(int nodeIndex, const tinygltf::Node& node, const glm::dmat4& world) {

@@ -7,6 +7,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <initializer_list>
 #include <limits>
+#include <map>
+#include <stdexcept>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -19,6 +21,7 @@
 #include "scene/json_lines.h"
 #include "render_model/dispersion.h"
 #include "scene/gltf_loader.h"
+#include "scene/instances.h"
 #include "scene/obj_loader.h"
 #include "scene/scene_loader.h"
 
@@ -83,14 +86,46 @@ public:
 
         const std::size_t listedLights = scene.lights.size();
         ObjLoader loader(scene, options_);
-        for (const ObjectSpec& spec : specs) {
+        // An OBJ file that two or more entries name (with the same "mtl") is loaded once, as a
+        // mesh that each entry places (docs/scene-format.md, "Instancing"); the others' triangles
+        // come first, in the world.
+        const std::vector<std::vector<std::size_t>> placings =
+            options_.instancing ? repeatedObjFiles(specs) : std::vector<std::vector<std::size_t>>{};
+        std::vector<bool> placed(specs.size(), false);
+        for (const std::vector<std::size_t>& uses : placings)
+            for (std::size_t i : uses) placed[i] = true;
+        for (std::size_t i = 0; i < specs.size(); ++i) {
+            const ObjectSpec& spec = specs[i];
             // A glTF's punctual lights join the scene's; its cameras are not used (the scene's
             // camera rules: docs/scene-format.md, "glTF in a JSON scene").
             if (spec.gltf)
                 loadGltf(scene, spec.file, options_, {.transform = spec.options.transform});
-            else
+            else if (!placed[i])
                 loader.load(spec.file, spec.options);
         }
+        for (const std::vector<std::size_t>& uses : placings) {
+            const std::size_t firstTriangle = scene.triangles.size(), firstObject = scene.objectNames.size();
+            loader.load(specs[uses.front()].file, {.mtlOverride = specs[uses.front()].options.mtlOverride});
+            std::vector<std::string> names;
+            const std::uint32_t mesh = makeMesh(scene, firstTriangle, firstObject, names);
+            const FloatBox meshBox = meshBoxes(scene)[mesh];
+            for (std::size_t i : uses) {
+                const std::string at = "/objects/" + std::to_string(i) + "/transform";
+                Instance instance;
+                try {
+                    instance = makeInstance(mesh, std::uint32_t(scene.objectNames.size()), specs[i].options.transform);
+                } catch (const std::invalid_argument& e) {
+                    fail(at, e.what());
+                }
+                const FloatBox box = instanceBox(instance, meshBox);
+                const glm::vec3 size = box.max - box.min;
+                if (!(std::isfinite(size.x) && std::isfinite(size.y) && std::isfinite(size.z)))
+                    fail(at, "the transform moves the object's vertices beyond the range of float");
+                scene.instances.push_back(instance);
+                scene.objectNames.insert(scene.objectNames.end(), names.begin(), names.end());
+            }
+        }
+        putMeshesLast(scene);  // a glTF file's meshes among the world's triangles
         if (const auto problem = lightProblem(scene)) {
             if (problem->light >= listedLights) throw inputError(file_, 0, "a light of its glTF files: " + problem->message);
             fail("/lights/" + std::to_string(problem->light) + "/position", problem->message);
@@ -287,6 +322,24 @@ private:
             fail(path + "/at", problem);
         }
         return c;
+    }
+
+    // The entries of each OBJ file that two or more entries name with the same "mtl", in the
+    // order of their first entries.
+    static std::vector<std::vector<std::size_t>> repeatedObjFiles(const std::vector<ObjectSpec>& specs) {
+        std::map<std::pair<fs::path, fs::path>, std::size_t> group;
+        std::vector<std::vector<std::size_t>> groups;
+        for (std::size_t i = 0; i < specs.size(); ++i) {
+            if (specs[i].gltf) continue;
+            const auto key = std::pair(fs::weakly_canonical(specs[i].file),
+                                       specs[i].options.mtlOverride ? fs::weakly_canonical(*specs[i].options.mtlOverride)
+                                                                    : fs::path());
+            const auto [it, added] = group.try_emplace(key, groups.size());
+            if (added) groups.emplace_back();
+            groups[it->second].push_back(i);
+        }
+        std::erase_if(groups, [](const std::vector<std::size_t>& uses) { return uses.size() < 2; });
+        return groups;
     }
 
     std::vector<ObjectSpec> objects(const json& v, const std::string& path) const {

@@ -1,5 +1,6 @@
 // What loading a scene may be told: the limit on its textures of the device it will be rendered
-// on, a check of its triangle count, where to report progress, and a glTF file's camera.
+// on, a check of its triangle count, where to report progress, a glTF file's camera, and whether
+// repeated meshes are instanced.
 #pragma once
 
 #include <cstddef>
@@ -21,6 +22,9 @@ struct SceneLoadOptions {
     // The glTF camera to look through, by name (`--camera NAME`); empty: the file's first
     // perspective camera in node order.
     std::string camera;
+    // A mesh that two or more entries of a JSON scene or nodes of a glTF file place is stored once
+    // and placed by instances (Scene::instances); false: every copy in the world (`--no-instancing`).
+    bool instancing = true;
 };
 
 }  // namespace vitrum

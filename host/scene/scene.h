@@ -55,6 +55,25 @@ struct Triangle {
     std::uint32_t object = 0;  // index into Scene::objectNames: one closed mesh
 };
 
+// A mesh stored once and placed by instances (issue 50; docs/gpu-design.md, "Instancing"): the
+// triangles [first, first + count) of Scene::triangles, in the mesh's own space, their `object`
+// numbering the mesh's own objects from 0 (its instances' objects are the scene's).
+struct Mesh {
+    std::uint32_t first = 0;
+    std::uint32_t count = 0;
+    std::uint32_t objects = 0;  // how many objects its triangles number
+};
+
+// A copy of a mesh placed in the world: its objects are Scene::objectNames [firstObject,
+// firstObject + mesh's objects). worldToObject is objectToWorld's inverse, computed in double and
+// rounded once (makeInstance), so that both backends transform rays with the same floats.
+struct Instance {
+    std::uint32_t mesh = 0;
+    std::uint32_t firstObject = 0;
+    glm::mat4 objectToWorld{1.0f};
+    glm::mat4 worldToObject{1.0f};
+};
+
 struct PointLight {
     glm::vec3 position{0.0f};
     glm::vec3 colour{1.0f};  // linear
@@ -113,10 +132,19 @@ struct Scene {
     Background background;
     RenderSettings settings;
     float airIor = 1.0f;
+    // The world's triangles, then each mesh's (Mesh::first): without instances, all of them are
+    // the world's.
     std::vector<Triangle> triangles;
+    std::vector<Mesh> meshes;
+    std::vector<Instance> instances;
     std::vector<Material> materials;
     std::vector<Texture> textures;
     std::vector<std::string> objectNames;
 };
+
+// The triangles in world space: all but the meshes' (which come after them).
+inline std::uint32_t worldTriangleCount(const Scene& scene) {
+    return scene.meshes.empty() ? std::uint32_t(scene.triangles.size()) : scene.meshes.front().first;
+}
 
 }  // namespace vitrum

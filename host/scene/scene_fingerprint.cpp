@@ -58,6 +58,18 @@ std::uint64_t sceneFingerprint(const Scene& scene) {
         d.add(t.material);
         d.add(t.object);
     }
+    if (!scene.instances.empty()) {
+        for (const Mesh& m : scene.meshes) {
+            d.add(m.first);
+            d.add(m.count);
+            d.add(m.objects);
+        }
+        for (const Instance& instance : scene.instances) {
+            d.add(instance.mesh);
+            d.add(instance.firstObject);
+            for (int c = 0; c < 4; ++c) d.add(glm::vec4(instance.objectToWorld[c]));
+        }
+    }
     d.add(scene.materials.size());
     for (const Material& m : scene.materials) {
         d.add(std::uint32_t(m.model));

@@ -1,5 +1,7 @@
 #include "scene/scene_loader.h"
 
+#include "scene/instances.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -89,13 +91,8 @@ struct BoundingSphere {
 
 // The sphere around the geometry's box; radius 1 for nothing or a single point.
 BoundingSphere boundingSphere(const Scene& scene) {
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (const Triangle& t : scene.triangles) {
-        for (const glm::vec3& p : t.position) {
-            lo = glm::min(lo, p);
-            hi = glm::max(hi, p);
-        }
-    }
+    const FloatBox box = worldBox(scene);  // the instances' boxes too
+    const glm::vec3 lo = box.min, hi = box.max;
     BoundingSphere sphere;
     if (scene.triangles.empty()) return sphere;
     sphere.centre = (lo + hi) * 0.5f;

@@ -44,6 +44,38 @@ VITRUM_CONST uint kLeafEntryFlag = 0x80000000u;
 VITRUM_CONST uint kMaxTriangles = (1u << 27) - 1u;
 VITRUM_CONST uint kTraversalStackSize = 64u;
 
+// ---- Instances (a two-level BVH; docs/gpu-design.md, "Instancing") ----------------------------
+// A scene with instances (vitrum::Scene::instances) has a top-level tree over its instances' world
+// boxes first in the node array, then the world triangles' tree, then each mesh's tree (their
+// triangles stored once, in the mesh's space). A top-level leaf is one instance: as a BvhNode, a
+// leaf of count 0 whose first is the instance; as a traversal entry, kLeafEntryFlag | (instance +
+// 1) << 4 (count 0; kLeafEntryFlag alone stays the empty scene's leaf), or for the world
+// triangles' tree, that tree's root entry itself. Entering an instance moves the ray into its
+// mesh's space (not normalized, so that t stays the world's) and pushes kLeaveInstanceEntry,
+// whose pop moves it back. A tree's depth is bounded so that the top level's, one entry and a
+// mesh's fit the stack (host/bvh/bvh_builder.cpp).
+//   toObject0..2: the rows of the world-to-object matrix (xyz the linear part, w the translation)
+//   toWorld0..2: the rows of the object-to-world matrix
+//   info.x: the mesh tree's root, a BvhNode index (the CPU's); info.y: the traversal entry of it
+//   (the GPU's); info.z: the instance's first object (its mesh's object k is first + k);
+//   info.w: kIdentityInstance for the world triangles' tree (no transform, no objects added)
+// Eight texels, two traversal nodes: instance i is at traversal node RenderParams bvh.y + 2 i.
+struct GpuInstance {
+    vec4 toObject0;
+    vec4 toObject1;
+    vec4 toObject2;
+    vec4 toWorld0;
+    vec4 toWorld1;
+    vec4 toWorld2;
+    uvec4 info;
+    uvec4 unused;
+};
+VITRUM_CONST uint kNoInstance = 0xFFFFFFFFu;
+VITRUM_CONST uint kIdentityInstance = 1u;
+VITRUM_CONST uint kMaxInstances = (1u << 27) - 2u;
+VITRUM_CONST uint kLeaveInstanceEntry = 0xFFFFFFF0u;  // kLeafEntryFlag | (kMaxInstances + 1) << 4
+VITRUM_CONST uint kGpuInstanceNodes = 2u;
+
 // ---- Triangles (in BVH leaf order) -----------------------------------------------------------
 // Positions for intersection. v0.w = material index bits, v1.w = object index bits (the closed
 // mesh the triangle belongs to; it encloses a medium when its material is glass), v2.w =
@@ -118,6 +150,7 @@ VITRUM_CONST uint kFresnelSchlickExp2 = 2u;
 // against the struct sizes). An object's medium is two texels: its material's `attenuation` (Tf,
 // Ni), then its priority (int bits in x; render-model-decisions.md, "Overlapping media by priority").
 VITRUM_CONST uint kTraversalNodeTexels = 4u;
+VITRUM_CONST uint kGpuInstanceTexels = 8u;
 VITRUM_CONST uint kTraceStateTexels = 16u;  // a pixel's saved state (shaders/suspend.glsl)
 VITRUM_CONST uint kTriangleVerticesTexels = 3u;
 VITRUM_CONST uint kGpuMaterialTexels = 4u;

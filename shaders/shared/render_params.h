@@ -24,7 +24,7 @@ struct RenderParams {
     uvec4 models;            // Fresnel model, background kind, texture filter, background texture
     uvec4 surfaceChecks;     // flags: touching probe, opaque contact, coincident opaque
     vec4 thresholds;         // min weight, touching distance, ray-offset region, ray offset
-    uvec4 bvh;               // the root's entry
+    uvec4 bvh;               // the root's entry, the first instance's node
     uvec4 cameraMedia;       // media around the camera, innermost last
     vec4 cameraSurface;      // the normal of the surface the camera lies on
     uvec4 cameraMediaBehind; // media behind that surface, innermost last
@@ -81,6 +81,8 @@ struct RenderParams {
     SCALAR(float, offsetDistance, thresholds, w)                                                   \
     /* the root's entry (TraversalNode): node 0, or the one leaf of a small scene */               \
     SCALAR(uint, bvhRoot, bvh, x)                                                                  \
+    /* the node of the first instance (gpu_types.h, "Instances"), 0 for a scene without */        \
+    SCALAR(uint, firstInstanceNode, bvh, y)                                                        \
     /* the unit normal of the surface the camera lies on, 0 if none: primary rays start off it */ \
     /* on their side (analysis/camera_surface.h), cameraMedia in front, cameraMediaBehind behind */ \
     VECTOR(cameraSurfaceNormal, cameraSurface)
@@ -123,7 +125,7 @@ inline void setSurfaceChecks(RenderParams& p, bool touchingProbe, bool opaqueCon
 inline void setThresholds(RenderParams& p, float minWeight, float touchingDistance, float offsetRegion, float offset) {
     p.thresholds = vec4(minWeight, touchingDistance, offsetRegion, offset);
 }
-inline void setBvhRoot(RenderParams& p, uint root) { p.bvh = uvec4(root, 0, 0, 0); }
+inline void setBvhRoot(RenderParams& p, uint root, uint firstInstance = 0) { p.bvh = uvec4(root, firstInstance, 0, 0); }
 #endif
 
 VITRUM_GPU_END

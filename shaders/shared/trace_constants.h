@@ -27,7 +27,8 @@ VITRUM_CONST uint kConstantFullSubgroups = 15u;
 VITRUM_CONST uint kConstantPersistentSubgroups = 16u;
 // A scene feature, numbered after the others.
 VITRUM_CONST uint kConstantDispersion = 17u;
-VITRUM_CONST uint kTraceConstantCount = 18u;
+VITRUM_CONST uint kConstantInstancing = 18u;
+VITRUM_CONST uint kTraceConstantCount = 19u;
 VITRUM_GPU_END
 
 #endif

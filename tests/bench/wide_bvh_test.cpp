@@ -66,7 +66,7 @@ TEST(WideBvh, HoldsEveryTriangleOnceInBoxesThatContainIt) {
         for (const glm::uvec3& f : mesh.faces)
             scene.triangles.push_back(makeTriangle(mesh.vertices[f.x], mesh.vertices[f.y], mesh.vertices[f.z], 0, i));
     }
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     std::vector<Triangle> ordered;
     for (std::uint32_t i : bvh.triangleOrder) ordered.push_back(scene.triangles[i]);
     const bench::WideBvh tree = bench::makeWideBvh(bvh.nodes);
@@ -83,7 +83,7 @@ TEST(WideBvh, HoldsEveryTriangleOnceInBoxesThatContainIt) {
 TEST(WideBvh, ATreeThatIsOneLeafIsItsRootEntry) {
     Scene scene;
     scene.triangles.push_back(makeTriangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0, 0));
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     const bench::WideBvh tree = bench::makeWideBvh(bvh.nodes);
     EXPECT_EQ(tree.rootEntry, gpu::kLeafEntryFlag | 0u << 4 | 1u);
     EXPECT_EQ(tree.nodes, 0u);

@@ -153,7 +153,7 @@ TEST(Dispersion, PrismDeviatesEachWavelengthByTheMinimumDeviationFormula) {
         scene.lights.clear();
         scene.settings.wavelengths = kSamples;
         scene.settings.maxDepth = 3;  // primary, into the prism, out of it
-        const Bvh bvh = buildBvh(scene.triangles);
+        const Bvh bvh = buildSceneBvh(scene);
         std::vector<TracedRay> rays;
         RenderStats stats;
         renderReference(scene, bvh, {.doublePrecision = true, .threads = 1, .tracedRays = &rays}, stats);
@@ -211,7 +211,7 @@ TEST(Dispersion, ARayEnteringADispersiveGlassThroughATouchingFaceSplitsThere) {
     const SceneFeatures features = analyseScene(scene);
     ASSERT_TRUE(features.touchingMediaPossible);
     ASSERT_TRUE(features.dispersion);
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     std::vector<TracedRay> rays;
     RenderStats stats;
     renderReference(scene, bvh, {.doublePrecision = true, .threads = 1, .tracedRays = &rays}, stats);

@@ -16,6 +16,7 @@
 #include "common/error.h"
 #include "image/image.h"
 #include "image/srgb.h"
+#include "scene/instances.h"
 #include "scene/scene_loader.h"
 #include "../support/temporary_folder_test.h"
 
@@ -170,7 +171,7 @@ TEST_F(GltfLoader, MirroringNodeKeepsTheWindingOutward) {
     const int mesh = b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}});
     b.node({{"mesh", mesh}});
     b.node({{"mesh", mesh}, {"scale", {-1, 1, 1}}});
-    Scene scene = load(b.write(dir_ / "mirror.gltf"));
+    Scene scene = loadScene(b.write(dir_ / "mirror.gltf"), {.instancing = false});
     ASSERT_EQ(scene.triangles.size(), 2u);
     auto normal = [](const Triangle& t) {
         return glm::normalize(glm::cross(t.position[1] - t.position[0], t.position[2] - t.position[0]));
@@ -179,6 +180,36 @@ TEST_F(GltfLoader, MirroringNodeKeepsTheWindingOutward) {
     expectNear(normal(scene.triangles[0]), {0, -1, 0});
     expectNear(normal(scene.triangles[1]), {0, -1, 0});
     EXPECT_EQ(scene.objectNames.size(), 2u);  // each mesh instance is an object
+}
+
+// A mesh that two nodes use is stored once and placed twice (docs/scene-format.md,
+// "Instancing"): its copies are the triangles the nodes would each have made.
+TEST_F(GltfLoader, AMeshTwoNodesUseIsStoredOnceAndPlacedTwice) {
+    GltfBuilder b;
+    const int mesh = b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}});
+    b.node({{"mesh", mesh}, {"translation", {0, 0, 2}}, {"name", "plain"}});
+    b.node({{"mesh", mesh}, {"scale", {-1, 1, 1}}, {"name", "mirrored"}});
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}})}, {"name", "once"}});
+    const fs::path file = b.write(dir_ / "twice.gltf");
+    const Scene scene = load(file);
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    ASSERT_EQ(scene.instances.size(), 2u);
+    EXPECT_EQ(scene.triangles.size(), 2u);  // the mesh once, and the one-node mesh in the world
+    EXPECT_EQ(worldTriangleCount(scene), 1u);
+    EXPECT_EQ(scene.objectNames, (std::vector<std::string>{"twice.gltf/once", "twice.gltf/plain", "twice.gltf/mirrored"}));
+    const Scene placed = flattened(scene);
+    const Scene loaded = loadScene(file, {.instancing = false});
+    ASSERT_EQ(placed.triangles.size(), loaded.triangles.size());
+    for (const Triangle& t : placed.triangles) {
+        // The same triangle, corners in the same order, wherever the flat load put it.
+        const auto same = std::find_if(loaded.triangles.begin(), loaded.triangles.end(), [&](const Triangle& u) {
+            return glm::all(glm::lessThan(glm::abs(t.position[0] - u.position[0]), glm::vec3(1e-6f))) &&
+                   glm::all(glm::lessThan(glm::abs(t.position[1] - u.position[1]), glm::vec3(1e-6f))) &&
+                   glm::all(glm::lessThan(glm::abs(t.position[2] - u.position[2]), glm::vec3(1e-6f)));
+        });
+        ASSERT_NE(same, loaded.triangles.end());
+        expectNear(t.normal[0], same->normal[0]);
+    }
 }
 
 // Every index component type the spec allows (unsigned byte, short, int) and no indices at all

@@ -58,7 +58,7 @@ TEST(MediumMaterials, AnObjectWithoutTrianglesGetsMaterialZero) {
 // "First" is the scene's order, not the BVH's, which the GPU's packed triangles follow.
 TEST(MediumMaterials, ThePackedSceneFollowsTheRule) {
     const Scene scene = mixedObjects();
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     std::vector<std::uint32_t> sceneOrder(scene.triangles.size());
     for (std::uint32_t i = 0; i < sceneOrder.size(); ++i) sceneOrder[i] = i;
     ASSERT_NE(bvh.triangleOrder, sceneOrder) << "the BVH keeps the scene's order: the test shows nothing";

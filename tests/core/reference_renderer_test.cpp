@@ -231,7 +231,7 @@ TEST(ReferenceSampling, JitterUsesTheSharedHash) {
 // ---- Scenes built in code -------------------------------------------------------------------
 
 Image render(const Scene& scene, bool doublePrecision = false, RenderStats* statsOut = nullptr, unsigned threads = 2) {
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     RenderStats stats;
     ReferenceOptions options;
     options.doublePrecision = doublePrecision;
@@ -514,7 +514,7 @@ TEST(ReferenceRenderer, TracedRayLogHoldsEveryRayOfTheTree) {
     // model of ray schedules (bench/ray_schedules.h), each pixel's rays together, the first its
     // primary ray.
     const Scene scene = mixedScene();
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     RenderStats stats;
     std::vector<TracedRay> rays;
     ReferenceOptions options;
@@ -600,7 +600,7 @@ TEST(ReferenceRenderer, MinWeightCutsWeakBranches) {
 // 0 as tracing begins, then a call a row, one at a time though two threads render: in order.
 TEST(ReferenceRenderer, ProgressReachesOne) {
     const Scene scene = mixedScene();
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     std::vector<double> fractions;
     ReferenceOptions options;
     options.threads = 2;
@@ -627,7 +627,7 @@ TEST(ReferenceRenderer, ProbesForTouchingSurfacesOnlyWhereObjectsCanTouch) {
         scene.camera.width = 32;
         scene.camera.height = 24;
         RenderStats stats;
-        renderReference(scene, buildBvh(scene.triangles), ReferenceOptions{}, stats);
+        renderReference(scene, buildSceneBvh(scene), ReferenceOptions{}, stats);
         return stats;
     };
     RenderStats spheres = render("scenes/course/geospheres_5x5_glass.json");  // 25 separate spheres
@@ -669,7 +669,7 @@ TEST(ReferenceRenderer, AnIntersectorStandsInForTheBvh) {
     Scene scene = loadScene(std::string(VITRUM_SOURCE_DIR) + "/scenes/touching_cubes.json");
     scene.camera.width = 48;
     scene.camera.height = 36;
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     RenderStats plain, through;
     std::vector<TracedRay> rays;  // every ray the tree traced, closest-hit and shadow
     const Image expected = renderReference(scene, bvh, ReferenceOptions{.tracedRays = &rays}, plain);

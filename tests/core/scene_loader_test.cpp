@@ -677,9 +677,12 @@ TEST(SceneJson, EveryFieldRoundTrips) {
     EXPECT_FALSE(s.lights[1].inverseSquare);
     EXPECT_EQ(s.background.colour, glm::vec3(0.1f, 0.2f, 0.3f));
     EXPECT_FLOAT_EQ(s.airIor, 1.33f);
-    EXPECT_EQ(s.triangles.size(), 2u);
+    // The two entries name one file (relatively and absolutely): it is stored once and placed
+    // twice, each copy an object (docs/scene-format.md, "Instancing").
+    EXPECT_EQ(s.triangles.size(), 1u);
+    ASSERT_EQ(s.instances.size(), 2u);
     ASSERT_EQ(s.objectNames.size(), 2u);
-    EXPECT_EQ(s.triangles[1].object, 1u);
+    EXPECT_EQ(s.instances[1].firstObject, 1u);
     EXPECT_EQ(s.settings.samplesPerPixel, 16u);
     EXPECT_EQ(s.settings.maxDepth, 0u);
     EXPECT_EQ(s.settings.fresnel, FresnelModel::SchlickExp2);

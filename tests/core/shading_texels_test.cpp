@@ -72,7 +72,7 @@ Scene mixedShading() {
 
 TEST(ShadingTexels, EveryTriangleGetsItsNormalsAndUvsBackBitForBit) {
     const Scene scene = mixedShading();
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     const ShadingPlan plan = planShading(scene, bvh);
     // Distinct normals of the triangles not flat and untextured: a, b, c, d; a (the textured
     // one's); up and -0 up. Uvs for the one textured triangle.
@@ -103,7 +103,7 @@ TEST(ShadingTexels, AFlatUntexturedModelTakesOneTexelATriangle) {
         for (glm::vec3& p : t.position) p.y += float(i);
         scene.triangles.push_back(t);
     }
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     const ShadingPlan plan = planShading(scene, bvh);
     EXPECT_TRUE(plan.normals.empty());
     EXPECT_TRUE(plan.cornerNormals.empty());
@@ -139,7 +139,7 @@ TEST(ShadingTexels, ABigSmoothMeshHasEachNormalOnceInTheOrderOfFirstUse) {
             scene.triangles.push_back(t1);
             scene.triangles.push_back(t2);
         }
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     const ShadingPlan plan = planShading(scene, bvh);
     // The order of first use, worked out here.
     std::vector<glm::uvec3> firstUse;

@@ -197,7 +197,7 @@ TEST(LoopLimit, BudgetsCountTheGroupsIterationsSoTheDriverNeverCutsThem) {
         EXPECT_EQ(*limit, 65536u) << "a loop limit other than Mesa 22.3 lavapipe's";
     }
     Scene scene = loadScene(sourcePath("scenes/loop_limit.json"));
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     RenderStats group, lane;
     renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = 65400}, group);
     renderVulkan(testDevice(), scene, bvh,
@@ -218,7 +218,7 @@ TEST(LoopLimit, BudgetsCountTheGroupsIterationsSoTheDriverNeverCutsThem) {
 // counted may count.
 TEST(LoopLimit, TinyBudgetGivesTheImageOfOneDispatch) {
     Scene scene = loadSized("scenes/demo.json", 24, 18, FresnelModel::Exact);
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     RenderStats whole, split;
     const std::uint32_t before = testDevice().validationMessages();
     const Image a = renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{}, whole);
@@ -245,7 +245,7 @@ TEST(LoopLimit, TinyBudgetGivesTheImageOfOneDispatch) {
 // refused. At the minimum every pixel still finishes, with the image and rays of one dispatch.
 TEST(LoopLimit, TheSmallestBudgetStillFinishesEveryPixel) {
     Scene scene = loadSized("scenes/demo.json", 8, 4, FresnelModel::Exact);
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     RenderStats refused, whole, smallest;
     EXPECT_THROW(renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = kMinIterationBudget - 1},
                               refused),
@@ -269,7 +269,7 @@ TEST(LoopLimit, AGroupRunsToItsBudgetAndNoFurther) {
     if (!testDevice().hasSubgroupArithmeticAndBallot()) GTEST_SKIP() << "the device has no subgroup arithmetic";
     if (testDevice().subgroups().size < 8) GTEST_SKIP() << "a 4x2 image is more than one subgroup";
     Scene scene = loadSized("scenes/demo.json", 4, 2, FresnelModel::Exact);
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     constexpr std::uint32_t kBudget = 25;
     RenderStats stats;
     renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.iterationBudget = kBudget}, stats);
@@ -294,7 +294,7 @@ TEST(Statistics, SubgroupSumsCountWhatPlainAtomicsCount) {
     }
     if (!testDevice().hasSubgroupArithmeticAndBallot()) GTEST_SKIP() << "the device has no subgroup arithmetic and ballots";
     Scene scene = loadSized("scenes/demo.json", 37, 29, FresnelModel::Exact);
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     auto render = [&](StatisticsSums sums, std::uint32_t budget, Image& image) {
         RenderStats stats;
         image = renderVulkan(testDevice(), scene, bvh,
@@ -336,7 +336,7 @@ TEST(Statistics, SubgroupSumsCountWhatPlainAtomicsCount) {
 // restarted and suspended too.
 TEST(Statistics, AreTheSameWhicheverInvocationTakesWhichPixels) {
     Scene scene = loadSized("scenes/demo.json", 45, 30, FresnelModel::Exact);
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     const VulkanRenderOptions options{.iterationBudget = 300, .tileSize = 24};
     RenderStats firstStats;
     const Image first = renderVulkan(testDevice(), scene, bvh, options, firstStats);

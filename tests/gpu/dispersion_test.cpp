@@ -125,7 +125,7 @@ TEST(Dispersion, GluedSlabsRenderAsTheReferenceOnBothBackends) {
 // bit, with a small iteration budget so that pixels are suspended and resumed mid-split.
 TEST(Dispersion, GeneralKernelRendersTheSameImage) {
     const Scene scene = dispersivePrism(kFlintAbbe, 5);
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     RenderStats general, specialized;
     VulkanRenderOptions options{.iterationBudget = 200};
     options.specialize = false;

@@ -31,7 +31,7 @@ Scene lookingAlong(glm::vec3 d) {
 }
 
 void expectBothSee(Scene scene, glm::vec3 expected, float tolerance, const std::string& what) {
-    Bvh bvh = buildBvh(scene.triangles);
+    Bvh bvh = buildSceneBvh(scene);
     RenderStats gpuStats, cpuStats;
     Image gpu = renderVulkan(testDevice(), scene, bvh, {}, gpuStats);
     Image cpu = renderReference(scene, bvh, {}, cpuStats);
@@ -67,7 +67,7 @@ TEST(Environment, SphericalMapUvOfKnownDirectionsOnBothBackends) {
         Scene scene = lookingAlong(d);
         scene.textures.push_back(uvRamp(64, 32, 0.0f));
         scene.background = {.kind = BackgroundKind::Spherical, .map = 0};
-        Bvh bvh = buildBvh(scene.triangles);
+        Bvh bvh = buildSceneBvh(scene);
         RenderStats stats;
         EXPECT_NEAR(renderVulkan(testDevice(), scene, bvh, {}, stats).pixels[0].y, v, 2e-3f);
     }
@@ -132,8 +132,8 @@ TEST(Environment, CubeCrossAndSixFacesAreTheSameBackground) {
     Scene faces = glassSphereIn("scenes/glass_sphere_cube.json", TextureFilter::Bilinear);
     Scene cross = glassSphereIn("scenes/glass_sphere_cube_cross.json", TextureFilter::Bilinear);
     RenderStats a, b;
-    Image fromFaces = renderVulkan(testDevice(), faces, buildBvh(faces.triangles), {}, a);
-    Image fromCross = renderVulkan(testDevice(), cross, buildBvh(cross.triangles), {}, b);
+    Image fromFaces = renderVulkan(testDevice(), faces, buildSceneBvh(faces), {}, a);
+    Image fromCross = renderVulkan(testDevice(), cross, buildSceneBvh(cross), {}, b);
     EXPECT_EQ(diffImages(fromFaces, fromCross).maxAbsError, 0.0);
 }
 
@@ -154,7 +154,7 @@ TEST(Environment, A4096x2048HdrMapFitsAndAnOversizedOneIsRefusedNamingTheLimit) 
         scene.textures.push_back(Texture{"big", w, h, std::vector<glm::vec3>(std::size_t(w) * h, glm::vec3(0.5f))});
         scene.background = {.kind = BackgroundKind::Spherical, .map = 0};
         RenderStats stats;
-        return renderVulkan(testDevice(), scene, buildBvh(scene.triangles), {}, stats);
+        return renderVulkan(testDevice(), scene, buildSceneBvh(scene), {}, stats);
     };
     EXPECT_NEAR(render(4096, 2048).pixels[0].x, 0.5f, 1e-6f);  // 96 MiB of texels
     // The shortest map 8192 texels wide (12 bytes a texel) that is over the device's limit: 1366

@@ -116,7 +116,7 @@ TEST(GpuBuffer, AStagedSceneRendersTheSameImage) {
     Scene scene = loadScene(sourcePath("scenes/demo.json"));
     scene.camera.width = 48;
     scene.camera.height = 32;
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     const std::uint32_t before = testDevice().validationMessages();
     RenderStats directStats, stagedStats;
     const Image direct = renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{}, directStats);

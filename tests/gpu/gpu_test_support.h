@@ -75,7 +75,7 @@ struct RenderPair {
 
 inline RenderPair renderBoth(const Scene& scene, const VulkanRenderOptions& gpuOptions = {}) {
     RenderPair result;
-    Bvh bvh = buildBvh(scene.triangles);
+    Bvh bvh = buildSceneBvh(scene);
     std::uint32_t before = testDevice().validationMessages();
     result.gpu = renderVulkan(testDevice(), scene, bvh, gpuOptions, result.gpuStats);
     EXPECT_EQ(testDevice().validationMessages(), before) << "Vulkan validation messages while rendering";

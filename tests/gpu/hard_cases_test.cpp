@@ -727,7 +727,7 @@ TEST(HardCaseGlassOnOpaque, AGlassBlockStandingOnAFloorShowsTheFloorBeneathIt) {
     EXPECT_LE(diffImages(standing.gpu, sunkPair.gpu).maxAbsError, 1e-4);
     EXPECT_LE(diffImages(standing.cpu, sunkPair.cpu).maxAbsError, 1e-4);
     RenderStats doubleStats;
-    const Image inDouble = renderReference(scene, buildBvh(scene.triangles), {.doublePrecision = true}, doubleStats);
+    const Image inDouble = renderReference(scene, buildSceneBvh(scene), {.doublePrecision = true}, doubleStats);
     EXPECT_LE(diffImages(standing.cpu, inDouble).maxAbsError, 1e-4);
     EXPECT_EQ(standing.gpuStats.inconsistentMedia, 0u);
     EXPECT_EQ(standing.cpuStats.inconsistentMedia, 0u);
@@ -811,7 +811,7 @@ TEST(HardCaseCoincidentOpaque, ARayInsideABlockMeetsItsOwnBottomWhereItStandsOnA
         EXPECT_LE(diffImages(*a, *b).maxAbsError, 1e-4);
     }
     RenderStats doubleStats;
-    const Image inDouble = renderReference(scene, buildBvh(scene.triangles), {.doublePrecision = true}, doubleStats);
+    const Image inDouble = renderReference(scene, buildSceneBvh(scene), {.doublePrecision = true}, doubleStats);
     EXPECT_LE(diffImages(standing.cpu, inDouble).maxAbsError, 1e-4);
 }
 
@@ -1120,7 +1120,7 @@ TEST(HardCaseDeepTree, RayThroughTheDeepestNestOfBoxesNeverOverflowsTheTraversal
         scene.triangles.push_back(makeTriangle({10, y0, -1}, {10, y1, -1}, {10, y1, 1}, std::uint32_t(half), 1));
         scene.triangles.push_back(makeTriangle({10, y0, -1}, {10, y1, 1}, {10, y0, 1}, std::uint32_t(half), 1));
     }
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     EXPECT_GT(bvh.stats.maxDepth, 28u);  // the case is as deep as intended
     RenderPair p = renderBoth(scene);
     std::cout << "    depth " << bvh.stats.maxDepth << ", GPU boxes tested a ray "

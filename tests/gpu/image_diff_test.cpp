@@ -39,7 +39,7 @@ TEST(ImageDiff, OneLeafAndEmptyScenesMatchReference) {
     t.normal[0] = t.normal[1] = t.normal[2] = glm::vec3(0, -1, 0);
     scene.triangles.push_back(t);
     scene.objectNames = {"triangle"};
-    ASSERT_EQ(buildBvh(scene.triangles).nodes.size(), 1u);
+    ASSERT_EQ(buildSceneBvh(scene).nodes.size(), 1u);
     const RenderPair one = renderBoth(scene);
     expectImagesMatch(one);
     EXPECT_EQ(one.gpuStats.primaryRays, 64u * 48u);
@@ -79,7 +79,7 @@ TEST(ImageDiff, LambertSpheresMatchReference) {
 // traced, once, as in one tile over the whole image.
 TEST(ImageDiff, TilesCutOffByTheImageEdgeTraceEveryPixelOnce) {
     const Scene scene = loadSmall(sourcePath("scenes/demo.json"), 45, 30);
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     auto render = [&](std::uint32_t tileSize, RenderStats& stats) {
         const std::uint32_t before = testDevice().validationMessages();
         Image image = renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{.tileSize = tileSize}, stats);

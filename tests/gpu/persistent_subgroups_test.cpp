@@ -20,7 +20,7 @@ Render render(const std::string& file, std::uint32_t width, std::uint32_t height
     scene.camera.height = height;
     Render r;
     const std::uint32_t before = testDevice().validationMessages();
-    r.image = renderVulkan(testDevice(), scene, buildBvh(scene.triangles),
+    r.image = renderVulkan(testDevice(), scene, buildSceneBvh(scene),
                            VulkanRenderOptions{.iterationBudget = budget, .persistentSubgroups = persistent}, r.stats);
     EXPECT_EQ(testDevice().validationMessages(), before) << "Vulkan validation messages while rendering " << file;
     return r;

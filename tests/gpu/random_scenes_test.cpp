@@ -304,7 +304,7 @@ TEST(RandomScenes, SpecializedKernelMatchesTheGeneralOneBitForBit) {
     // it can (trace_specialization.h): the same arithmetic on the same rays, so the same image in
     // every bit and the same counts, wherever the scene's features were judged right.
     forEachRandomScene([](std::uint32_t seed, const Scene& scene) {
-        const Bvh bvh = buildBvh(scene.triangles);
+        const Bvh bvh = buildSceneBvh(scene);
         RenderStats specializedStats, generalStats;
         VulkanRenderOptions options = optionsFor(seed);
         const std::uint32_t before = testDevice().validationMessages();

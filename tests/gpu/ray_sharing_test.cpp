@@ -24,7 +24,7 @@ struct Render {
 
 Render render(const Scene& scene, StatisticsSums sums, std::uint32_t budget = VulkanRenderOptions{}.iterationBudget) {
     Render r;
-    r.image = renderVulkan(testDevice(), scene, buildBvh(scene.triangles),
+    r.image = renderVulkan(testDevice(), scene, buildSceneBvh(scene),
                            VulkanRenderOptions{.iterationBudget = budget, .statisticsSums = sums}, r.stats);
     return r;
 }

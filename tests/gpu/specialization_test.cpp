@@ -25,7 +25,7 @@ TEST_P(Specialization, SpecializedAndGeneralKernelsGiveTheSameImage) {
     Scene scene = loadScene(sourcePath(GetParam()));
     scene.camera.width = 40;
     scene.camera.height = 30;
-    Bvh bvh = buildBvh(scene.triangles);
+    Bvh bvh = buildSceneBvh(scene);
     RenderStats general, specialized;
     Image a = renderOnGpu(scene, bvh, false, general);
     Image b = renderOnGpu(scene, bvh, true, specialized);
@@ -59,7 +59,7 @@ TEST(Specialization, SeparateGlassSpheresRunNoTouchingProbeInTheSpecializedKerne
     Scene scene = loadScene(sourcePath("scenes/course/geospheres_5x5_glass.json"));
     scene.camera.width = 48;
     scene.camera.height = 36;
-    Bvh bvh = buildBvh(scene.triangles);
+    Bvh bvh = buildSceneBvh(scene);
     RenderStats general, specialized;
     renderOnGpu(scene, bvh, false, general);
     renderOnGpu(scene, bvh, true, specialized);
@@ -82,7 +82,7 @@ TEST(Specialization, DeepTreeFitsTheSizedPendingStack) {
     scene.camera.height = 24;
     scene.settings.maxDepth = 15;
     scene.settings.fresnel = FresnelModel::Exact;
-    Bvh bvh = buildBvh(scene.triangles);
+    Bvh bvh = buildSceneBvh(scene);
     RenderStats general, specialized;
     Image a = renderOnGpu(scene, bvh, false, general);
     Image b = renderOnGpu(scene, bvh, true, specialized);
@@ -119,7 +119,7 @@ TEST(Specialization, RaysThatSeemToEnterAnObjectTwiceKeepTheStackTheNestingBound
     scene.settings.samplesPerPixel = 4;
     scene.settings.minWeight = 0.1f;
     scene.settings.filter = TextureFilter::Nearest;
-    Bvh bvh = buildBvh(scene.triangles);
+    Bvh bvh = buildSceneBvh(scene);
     RenderStats general, specialized;
     VulkanRenderOptions options{.iterationBudget = 300};
     options.specialize = false;

@@ -46,7 +46,7 @@ TEST(SubgroupSelfCheck, AFailedCheckGivesTheSafeKernelAndTheSameImage) {
     Scene scene = loadScene(sourcePath("scenes/demo.json"));
     scene.camera.width = 64;
     scene.camera.height = 48;
-    const Bvh bvh = buildBvh(scene.triangles);
+    const Bvh bvh = buildSceneBvh(scene);
     RenderStats fastStats, safeStats;
     const Image fast = renderVulkan(testDevice(), scene, bvh, VulkanRenderOptions{}, fastStats);
 

@@ -99,11 +99,11 @@ TEST(TileSize, ARenderReportsItsTile) {
     scene.camera.width = 24;
     scene.camera.height = 16;
     RenderStats stats;
-    renderVulkan(testDevice(), scene, buildBvh(scene.triangles), VulkanRenderOptions{}, stats);
+    renderVulkan(testDevice(), scene, buildSceneBvh(scene), VulkanRenderOptions{}, stats);
     const std::uint32_t expected = defaultTileSize(testDevice().description());
     EXPECT_EQ(stats.tileSize, expected);
     EXPECT_EQ(toJson(stats)["kernel"]["tile_size"], expected);
-    renderVulkan(testDevice(), scene, buildBvh(scene.triangles), VulkanRenderOptions{.tileSize = 16}, stats);
+    renderVulkan(testDevice(), scene, buildSceneBvh(scene), VulkanRenderOptions{.tileSize = 16}, stats);
     EXPECT_EQ(stats.tileSize, 16u);
 }
 
@@ -117,7 +117,7 @@ TEST(TileSize, ARenderReportsItsUploadThenItsTiles) {
     VulkanRenderOptions options{.tileSize = 8};
     options.progress = [&](const std::string& phase, double fraction) { calls.emplace_back(phase, fraction); };
     RenderStats stats;
-    renderVulkan(testDevice(), scene, buildBvh(scene.triangles), options, stats);
+    renderVulkan(testDevice(), scene, buildSceneBvh(scene), options, stats);
     const std::vector<std::pair<std::string, double>> expected = {
         {"analysing the scene", 0.0},       {"analysing the scene", 1.0},
         {"uploading the scene", 0.0},       {"uploading the scene", 1.0 / 3.0}, {"uploading the scene", 2.0 / 3.0},

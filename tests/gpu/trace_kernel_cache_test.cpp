@@ -25,7 +25,7 @@ Render render(const Scene& scene, TraceKernelCache* kernels,
               std::uint32_t tileSize = VulkanRenderOptions{}.tileSize) {
     Render r;
     const std::uint32_t before = testDevice().validationMessages();
-    r.image = renderVulkan(testDevice(), scene, buildBvh(scene.triangles),
+    r.image = renderVulkan(testDevice(), scene, buildSceneBvh(scene),
                            VulkanRenderOptions{.iterationBudget = budget, .tileSize = tileSize, .kernels = kernels},
                            r.stats);
     EXPECT_EQ(testDevice().validationMessages(), before) << "Vulkan validation messages while rendering";
