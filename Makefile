@@ -5,7 +5,7 @@ JOBS ?= $(shell nproc)
 DEMO_SCENE ?= scenes/demo.json
 BENCH_RUNS ?= 5
 
-.PHONY: all deps drivers configure build demo test clean fuzz fuzz-deps sanitize bench-specialization bench-performance bench-ray-query bench-big-models study study-wavelengths
+.PHONY: all deps drivers configure build demo test clean fuzz fuzz-deps sanitize bench-specialization bench-performance bench-ray-query bench-instancing bench-big-models study study-wavelengths
 
 all: build
 
@@ -51,7 +51,7 @@ bench-performance: drivers build
 	@./bench/install-deps
 	cmake -S . -B $(BUILD) > /dev/null
 	cmake --build $(BUILD) -j $(JOBS) --target vitrum_bench_bvh vitrum_bench_primary_rays vitrum_bench_whitted \
-	  vitrum_bench_embree_render vitrum_bench_ray_query
+	  vitrum_bench_embree_render vitrum_bench_ray_query vitrum_bench_big_sphere
 	$(BUILD)/bench/vitrum_bench_bvh $(BENCH_RUNS) > docs/performance.md.partial
 	VK_ICD_FILENAMES=$${VK_ICD_FILENAMES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json} \
 	  $(BUILD)/bench/vitrum_bench_primary_rays $(BENCH_RUNS) >> docs/performance.md.partial
@@ -61,8 +61,18 @@ bench-performance: drivers build
 	./bench/renderer-vs-embree $(BENCH_RUNS) >> docs/performance.md.partial
 	./bench/compare-drivers $(BENCH_RUNS) >> docs/performance.md.partial
 	echo >> docs/performance.md.partial
+	./bench/instancing --runs $(INSTANCING_RUNS) >> docs/performance.md.partial
+	echo >> docs/performance.md.partial
 	./bench/ray-query $(BENCH_RUNS) >> docs/performance.md.partial
 	mv docs/performance.md.partial docs/performance.md
+
+# The instancing section of docs/performance.md alone (about 6 minutes on 2 cores; the sphere's
+# OBJ is kept in /tmp/vitrum-instancing); bench-performance regenerates it with the rest.
+INSTANCING_RUNS ?= 3
+bench-instancing: build
+	./bench/instancing --runs $(INSTANCING_RUNS) > docs/performance.md.section
+	./bench/replace-section docs/performance.md "## Instancing" "## vitrum's traversal against" docs/performance.md.section
+	rm docs/performance.md.section
 
 # The last section of docs/performance.md alone, vitrum's traversal against Mesa 25's ray queries
 # (about 2 minutes on 2 cores); bench-performance regenerates it with the rest.
