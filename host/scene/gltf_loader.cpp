@@ -193,12 +193,12 @@ public:
                 try {
                     instance = makeInstance(mesh, std::uint32_t(scene_.objectNames.size()), glm::mat4(world));
                 } catch (const std::invalid_argument&) {
-                    fail("node " + std::to_string(node) + "'s matrix is singular or not finite");
+                    fail("nodes[" + std::to_string(node) + "]: its matrix is singular or not finite");
                 }
                 const FloatBox placed = instanceBox(instance, box);
                 const glm::vec3 size = placed.max - placed.min;
                 if (!(std::isfinite(size.x) && std::isfinite(size.y) && std::isfinite(size.z)))
-                    fail("node " + std::to_string(node) + " moves its mesh's vertices beyond the range of float");
+                    fail("nodes[" + std::to_string(node) + "] moves its mesh's vertices beyond the range of float");
                 scene_.instances.push_back(instance);
                 scene_.objectNames.push_back(file_.filename().string() + "/" + nodeName(node, model_.nodes[std::size_t(node)]));
             }
@@ -253,7 +253,7 @@ private:
         const int nodeCount = int(model_.nodes.size());
         auto checked = [&](const std::vector<int>& nodes) {
             for (int n : nodes)
-                if (n < 0 || n >= nodeCount) fail("a scene names node " + std::to_string(n) + ", which does not exist");
+                if (n < 0 || n >= nodeCount) fail("a scene names nodes[" + std::to_string(n) + "], which does not exist");
             return nodes;
         };
         if (model_.defaultScene >= int(model_.scenes.size())) fail("\"scene\" names a scene that does not exist");
@@ -277,8 +277,8 @@ private:
         const glm::dmat4 world = glm::dmat4(options_.transform);
         auto walk = [&](auto& self, int index, const glm::dmat4& parent) -> void {
             if (index < 0 || std::size_t(index) >= model_.nodes.size())
-                fail("a node names child " + std::to_string(index) + ", which does not exist");
-            if (onPath[std::size_t(index)]) fail("node " + std::to_string(index) + " is its own ancestor");
+                fail("a node's children name nodes[" + std::to_string(index) + "], which does not exist");
+            if (onPath[std::size_t(index)]) fail("nodes[" + std::to_string(index) + "] is its own ancestor");
             onPath[std::size_t(index)] = true;
             const tinygltf::Node& node = model_.nodes[std::size_t(index)];
             const glm::dmat4 matrix = parent * zUpMatrix(localMatrix(node));
@@ -291,7 +291,7 @@ private:
 
     const tinygltf::Accessor& accessor(int index, const std::string& what) const {
         if (index < 0 || std::size_t(index) >= model_.accessors.size())
-            fail(what + " names accessor " + std::to_string(index) + ", which does not exist");
+            fail(what + " names accessors[" + std::to_string(index) + "], which does not exist");
         return model_.accessors[std::size_t(index)];
     }
 
@@ -306,14 +306,14 @@ private:
         if (normalizedIntegers && a.normalized &&
             (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT))
             return;
-        fail(what + " (accessor " + std::to_string(index) + ") has component type " + std::to_string(a.componentType) +
+        fail("accessors[" + std::to_string(index) + "] (" + what + ") has component type " + std::to_string(a.componentType) +
              "; glTF 2.0 allows it FLOAT (5126)" +
              (normalizedIntegers ? " or normalized unsigned bytes (5121) or shorts (5123)" : ""));
     }
 
     std::vector<double> elements(int index, int components, const std::string& what) const {
         const tinygltf::Accessor& a = accessor(index, what);
-        const std::string name = what + " (accessor " + std::to_string(index) + ")";
+        const std::string name = "accessors[" + std::to_string(index) + "] (" + what + ")";
         const int expectedType = components == 1 ? TINYGLTF_TYPE_SCALAR : components;
         if (a.type != expectedType) fail(name + " has the wrong type");
         const std::size_t size = componentBytes(a.componentType);
@@ -381,7 +381,7 @@ private:
 
     const tinygltf::Mesh& mesh(int index) const {
         if (index < 0 || std::size_t(index) >= model_.meshes.size())
-            fail("a node names mesh " + std::to_string(index) + ", which does not exist");
+            fail("a node names meshes[" + std::to_string(index) + "], which does not exist");
         return model_.meshes[std::size_t(index)];
     }
 
@@ -414,8 +414,8 @@ private:
         bool anyTriangle = false;
         for (std::size_t p = 0; p < m.primitives.size(); ++p) {
             const tinygltf::Primitive& primitive = m.primitives[p];
-            const std::string where = "mesh " + quoteInput(m.name.empty() ? std::to_string(node.mesh) : m.name) +
-                                      ", primitive " + std::to_string(p);
+            const std::string where = "meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(p) + "]" +
+                                      (m.name.empty() ? "" : " (mesh " + quoteInput(m.name) + ")");
             if (primitive.mode != TINYGLTF_MODE_TRIANGLES) {
                 static const char* kModes[] = {"points", "lines", "a line loop", "a line strip", "triangles",
                                                "a triangle strip", "a triangle fan"};
@@ -432,20 +432,20 @@ private:
                 warnAbout("morph targets are ignored: meshes are rendered without their weights");
                 warnedMorph_ = true;
             }
-            checkComponentType(primitive.attributes.at("POSITION"), where + " POSITION", false);
-            const std::vector<double> positions = elements(primitive.attributes.at("POSITION"), 3, where + " POSITION");
+            checkComponentType(primitive.attributes.at("POSITION"), where + ".attributes.POSITION", false);
+            const std::vector<double> positions = elements(primitive.attributes.at("POSITION"), 3, where + ".attributes.POSITION");
             const std::size_t vertexCount = positions.size() / 3;
             std::vector<double> normals, uvs;
             if (auto n = primitive.attributes.find("NORMAL"); n != primitive.attributes.end()) {
-                checkComponentType(n->second, where + " NORMAL", false);
-                normals = elements(n->second, 3, where + " NORMAL");
+                checkComponentType(n->second, where + ".attributes.NORMAL", false);
+                normals = elements(n->second, 3, where + ".attributes.NORMAL");
                 if (normals.size() != positions.size()) fail(where + " has a NORMAL for some vertices only");
             }
             if (auto t = primitive.attributes.find("TEXCOORD_0"); t != primitive.attributes.end()) {
-                checkComponentType(t->second, where + " TEXCOORD_0", true);
+                checkComponentType(t->second, where + ".attributes.TEXCOORD_0", true);
                 // glTF requires VEC2; assimp 5.2 writes VEC3 with a zero third: its first two read.
-                const bool vec3 = accessor(t->second, where + " TEXCOORD_0").type == TINYGLTF_TYPE_VEC3;
-                uvs = elements(t->second, vec3 ? 3 : 2, where + " TEXCOORD_0");
+                const bool vec3 = accessor(t->second, where + ".attributes.TEXCOORD_0").type == TINYGLTF_TYPE_VEC3;
+                uvs = elements(t->second, vec3 ? 3 : 2, where + ".attributes.TEXCOORD_0");
                 if (vec3) {
                     for (std::size_t i = 0; i < uvs.size() / 3; ++i) {
                         uvs[2 * i] = uvs[3 * i];
@@ -457,12 +457,12 @@ private:
             }
             std::vector<std::size_t> corners;
             if (primitive.indices >= 0) {
-                const tinygltf::Accessor& a = accessor(primitive.indices, where + " indices");
+                const tinygltf::Accessor& a = accessor(primitive.indices, where + ".indices");
                 if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
                     a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
                     a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
                     fail(where + " has indices that are not unsigned integers");
-                const std::vector<double> indices = elements(primitive.indices, 1, where + " indices");
+                const std::vector<double> indices = elements(primitive.indices, 1, where + ".indices");
                 corners.reserve(indices.size());
                 for (double i : indices) {
                     if (i >= double(vertexCount))
@@ -532,7 +532,7 @@ private:
 
     std::uint32_t materialIndex(int index) {
         if (std::size_t(index) >= model_.materials.size())
-            fail("a primitive names material " + std::to_string(index) + ", which does not exist");
+            fail("a primitive names materials[" + std::to_string(index) + "], which does not exist");
         if (auto found = materials_.find(index); found != materials_.end()) return found->second;
         const auto sceneIndex = std::uint32_t(scene_.materials.size());
         scene_.materials.push_back(material(model_.materials[std::size_t(index)], index));
@@ -543,7 +543,7 @@ private:
     // materials"): transmission is glass, metal a mirror, the rest the opaque dielectric.
     Material material(const tinygltf::Material& g, int index) {
         const std::string name = g.name.empty() ? "material" + std::to_string(index) : g.name;
-        const std::string quoted = "material " + quoteInput(name);
+        const std::string quoted = "materials[" + std::to_string(index) + "] (" + quoteInput(name) + ")";
         std::vector<std::string> ignored;
         Material m;
         m.name = name;
@@ -712,7 +712,7 @@ private:
             if (value.Has("texCoord") && value.Get("texCoord").IsNumber()) texCoord = value.Get("texCoord").GetNumberAsInt();
         }
         if (texCoord != 0) ignored.push_back("baseColorTexture's TEXCOORD_" + std::to_string(texCoord) + " (TEXCOORD_0 used)");
-        if (std::size_t(info.index) >= model_.textures.size()) fail(quoted + " names a texture that does not exist");
+        if (std::size_t(info.index) >= model_.textures.size()) fail(quoted + " names textures[" + std::to_string(info.index) + "], which does not exist");
         const int source = model_.textures[std::size_t(info.index)].source;
         if (source < 0 || std::size_t(source) >= model_.images.size()) {
             warnAbout(quoted + ": its texture has no image it can read; using baseColorFactor");
@@ -791,9 +791,10 @@ private:
         if (found == node.extensions.end() || !found->second.Has("light")) return false;
         const tinygltf::Value& index = found->second.Get("light");
         if (!index.IsNumber() || index.GetNumberAsInt() < 0 || std::size_t(index.GetNumberAsInt()) >= model_.lights.size())
-            fail("a node names a light that does not exist");
+            fail("a node names a light of KHR_lights_punctual.lights that does not exist");
         const tinygltf::Light& light = model_.lights[std::size_t(index.GetNumberAsInt())];
-        const std::string quoted = "light " + quoteInput(light.name.empty() ? std::to_string(index.GetNumberAsInt()) : light.name);
+        const std::string quoted = "extensions.KHR_lights_punctual.lights[" + std::to_string(index.GetNumberAsInt()) + "]" +
+                                   (light.name.empty() ? "" : " (" + quoteInput(light.name) + ")");
         if (light.type == "directional") {
             warnAbout(quoted + " is directional, which vitrum does not render: skipped");
             return false;
@@ -820,7 +821,7 @@ private:
     bool takeCamera(const std::vector<std::pair<int, glm::dmat4>>& cameras) {
         auto cameraName = [&](int index) {
             if (index < 0 || std::size_t(index) >= model_.cameras.size())
-                fail("a node names camera " + std::to_string(index) + ", which does not exist");
+                fail("a node names cameras[" + std::to_string(index) + "], which does not exist");
             return model_.cameras[std::size_t(index)].name;
         };
         for (const auto& c : cameras) cameraName(c.first);  // every camera node names a camera
@@ -839,7 +840,7 @@ private:
         }
         if (!chosen) return false;
         const tinygltf::Camera& g = model_.cameras[std::size_t(chosen->first)];
-        const std::string quoted = "camera " + quoteInput(g.name.empty() ? std::to_string(chosen->first) : g.name);
+        const std::string quoted = "cameras[" + std::to_string(chosen->first) + "]" + (g.name.empty() ? "" : " (" + quoteInput(g.name) + ")");
         if (g.type != "perspective")
             fail(quoted + " is " + (g.type.empty() ? std::string("of no type") : g.type) +
                  ", which vitrum does not render: it renders perspective cameras (choose one with --camera NAME)");

@@ -13,6 +13,7 @@
 #include "common/error.h"
 #include "image/image.h"
 #include "analysis/scene_features.h"
+#include "bvh/bvh.h"
 #include "scene/scene_loader.h"
 
 namespace vitrum {
@@ -105,7 +106,10 @@ int fuzzSceneJson(const std::uint8_t* data, std::size_t size) {
     (void)triangleWritten;
     writeFile("scene.json", asText(data, size));
     try {
-        analyseScene(loadScene(folder() / "scene.json"));
+        // Its BVH too: two levels where it names tri.obj twice (instancing).
+        const Scene scene = loadScene(folder() / "scene.json");
+        analyseScene(scene);
+        buildSceneBvh(scene);
     } catch (const InputError&) {
     }
     return 0;
