@@ -81,7 +81,10 @@ int fuzzGltf(const std::uint8_t* data, std::size_t size) {
     const bool binary = bytes.substr(0, 4) == "glTF";
     const fs::path file = writeFile(binary ? "fuzz.glb" : "fuzz.gltf", bytes);
     try {
-        analyseScene(loadScene(file));
+        // Its BVH too: two levels where nodes share a mesh (instancing).
+        const Scene scene = loadScene(file);
+        analyseScene(scene);
+        buildSceneBvh(scene);
     } catch (const InputError&) {
     }
     return 0;
