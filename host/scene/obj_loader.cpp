@@ -220,7 +220,12 @@ ObjScan scanObj(const fs::path& file, std::string_view text) {
         }
     };
     std::vector<std::thread> threads;
-    for (std::size_t k = 1; k < parts; ++k) threads.emplace_back(scanPart, k);
+    try {
+        for (std::size_t k = 1; k < parts; ++k) threads.emplace_back(scanPart, k);
+    } catch (...) {  // a thread that cannot start (no memory for its stack): those started end first
+        for (std::thread& t : threads) t.join();
+        throw;
+    }
     scanPart(0);
     for (std::thread& t : threads) t.join();
     for (const std::exception_ptr& e : failed)
