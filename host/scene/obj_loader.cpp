@@ -29,10 +29,16 @@ namespace fs = std::filesystem;
 
 std::string readText(const fs::path& file) { return readInputLines(file, "the OBJ file", kMaxObjFileBytes); }
 
+bool isBlank(char c) { return c == ' ' || c == '\t'; }
+
+// A loop of two compares: find_first_of(" \t") calls memchr on the set for each character, a
+// quarter of the parse's time.
 std::string_view firstWord(std::string_view line, std::size_t* end = nullptr) {
-    std::size_t begin = line.find_first_not_of(" \t");
-    if (begin == std::string_view::npos) return {};
-    std::size_t stop = std::min(line.find_first_of(" \t", begin), line.size());
+    std::size_t begin = 0;
+    while (begin < line.size() && isBlank(line[begin])) ++begin;
+    if (begin == line.size()) return {};
+    std::size_t stop = begin;
+    while (stop < line.size() && !isBlank(line[stop])) ++stop;
     if (end) *end = stop;
     return line.substr(begin, stop - begin);
 }
@@ -134,8 +140,6 @@ assemble:
     *result = (sign == '+' ? 1 : -1) * (exponent ? std::ldexp(mantissa * std::pow(5.0, exponent), exponent) : mantissa);
     return true;
 }
-
-bool isBlank(char c) { return c == ' ' || c == '\t'; }
 
 // parseReal: the next word of the line, `fallback` where it is no number.
 float tinyobjReal(const char*& at, const char* lineEnd, double fallback = 0.0) {
@@ -748,6 +752,9 @@ void ObjLoader::load(const fs::path& objFile, const ObjOptions& options) {
             const std::size_t corners = part.faceEnds[local] - offset;
             const Corner* corner = part.corners.data() + offset;
             for (std::size_t c = 0; c < corners; ++c) {
+                if (corner[c].v >= 0 && corner[c].v < vertexCount && corner[c].vn >= -1 && corner[c].vn < normalCount &&
+                    corner[c].vt >= -1 && corner[c].vt < uvCount)
+                    continue;  // in range (-1: none), the checks below pass
                 auto check = [&](int index, int count, bool optional, const char* what) {
                     if ((optional && index == -1) || (index >= 0 && index < count)) return;
                     std::string problem = index < 0 ? "an index before the first of its " + std::string(what)
