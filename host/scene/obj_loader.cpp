@@ -237,10 +237,11 @@ void readLines(const fs::path& file, const std::string& text, std::size_t from, 
                ObjPart& part, const std::function<void(double)>& progress, std::size_t reports) {
     bool seenUsemtl = false;
     int lineNumber = linesBefore;
-    std::size_t reported = 0;
+    std::size_t reported = 0, nextReport = progress && reports ? from : std::string::npos;
     auto report = [&](std::size_t at) {
         for (; reported < reports && at >= from + (to - from) * reported / reports; ++reported)
             progress(double(reported << 20) / double(text.size()));
+        nextReport = reported < reports ? from + (to - from) * reported / reports : std::string::npos;
     };
     auto readerError = [&](const char* statement, const char* what) {
         if (part.readerErrorLine) return;
@@ -254,7 +255,7 @@ void readLines(const fs::path& file, const std::string& text, std::size_t from, 
         return int(std::int64_t(count) + value);  // fixIndex; the part's start is added later
     };
     for (std::size_t begin = from; begin < to;) {
-        if (progress) report(begin);
+        if (begin >= nextReport) report(begin);
         std::size_t end = std::min(text.find('\n', begin), text.size());
         std::string_view line = std::string_view(text).substr(begin, end - begin);  // no '\r' (readInputLines)
         const char* lineEnd = text.data() + end;
