@@ -1,5 +1,5 @@
 // The vitrum program's global operator new: C++ blocks of a big model (the OBJ's text,
-// tinyobjloader's vectors, the triangles, the BVH, the analysis' edges) go to huge pages
+// the OBJ parser's vectors, the triangles, the BVH, the analysis' edges) go to huge pages
 // (common/huge_pages.h). Blocks this large are fresh mappings of their own (glibc's mmap threshold
 // is at most 32 MiB), so the advice reaches no other allocation. Sanitizer builds keep theirs.
 #include <cstdlib>

@@ -32,7 +32,12 @@ void parallelFor(std::size_t count, Body&& body, std::size_t minChunk = std::siz
     };
     std::vector<std::thread> threads;
     threads.reserve(chunks - 1);
-    for (std::size_t chunk = 1; chunk < chunks; ++chunk) threads.emplace_back(run, chunk);
+    try {
+        for (std::size_t chunk = 1; chunk < chunks; ++chunk) threads.emplace_back(run, chunk);
+    } catch (...) {  // a thread that cannot start (no memory for its stack): those started end first
+        for (std::thread& t : threads) t.join();
+        throw;
+    }
     run(0);
     for (std::thread& t : threads) t.join();
     for (const std::exception_ptr& e : failed)

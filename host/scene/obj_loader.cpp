@@ -1,18 +1,13 @@
 #include "scene/obj_loader.h"
 
-#include <tiny_obj_loader.h>
-
 #include <algorithm>
 #include <charconv>
+#include <climits>
 #include <cmath>
 #include <exception>
 #include <functional>
 #include <limits>
 #include <set>
-#include <istream>
-#include <sstream>
-#include <streambuf>
-#include <tuple>
 #include <string_view>
 #include <thread>
 #include <utility>
@@ -34,36 +29,16 @@ namespace fs = std::filesystem;
 
 std::string readText(const fs::path& file) { return readInputLines(file, "the OBJ file", kMaxObjFileBytes); }
 
-// The OBJ's text as tinyobjloader reads it, a chunk at a time, telling how far it has read (an
-// istringstream copied the text first: one more copy of a 100 MB file).
-class TextStream : public std::streambuf {
-public:
-    TextStream(std::string& text, std::function<void(double)> progress)
-        : text_(text), progress_(std::move(progress)) {}
+bool isBlank(char c) { return c == ' ' || c == '\t'; }
 
-protected:
-    int_type underflow() override {
-        if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
-        if (next_ >= text_.size()) return traits_type::eof();
-        if (progress_) progress_(double(next_) / double(text_.size()));
-        const std::size_t count = std::min(kChunk, text_.size() - next_);
-        char* begin = text_.data() + next_;
-        setg(begin, begin, begin + count);
-        next_ += count;
-        return traits_type::to_int_type(*gptr());
-    }
-
-private:
-    static constexpr std::size_t kChunk = std::size_t(1) << 20;
-    std::string& text_;
-    std::function<void(double)> progress_;
-    std::size_t next_ = 0;
-};
-
+// A loop of two compares: find_first_of(" \t") calls memchr on the set for each character, a
+// quarter of the parse's time.
 std::string_view firstWord(std::string_view line, std::size_t* end = nullptr) {
-    std::size_t begin = line.find_first_not_of(" \t");
-    if (begin == std::string_view::npos) return {};
-    std::size_t stop = std::min(line.find_first_of(" \t", begin), line.size());
+    std::size_t begin = 0;
+    while (begin < line.size() && isBlank(line[begin])) ++begin;
+    if (begin == line.size()) return {};
+    std::size_t stop = begin;
+    while (stop < line.size() && !isBlank(line[stop])) ++stop;
     if (end) *end = stop;
     return line.substr(begin, stop - begin);
 }
@@ -80,39 +55,219 @@ std::size_t exponentDigits(std::string_view number) {
     return digits;
 }
 
-// What tinyobjloader does not tell: it reads "nan" or an unparsable coordinate as 0 and has no
-// line numbers for its own checks, so vertex lines (and face indices and exponents it would read
-// with overflows) are checked here first. Also notes the
-// mtllib and usemtl statements, and a line that can hold an inserted mtllib statement.
-struct ObjScan {
-    // The v, vn, vt and f statements (faces of three corners or more) and the faces' corners: what
-    // tinyobjloader returns is checked against them, since a line it reads differently from this
-    // scan would shift every index after it, or change a face, without an error.
-    std::size_t vertices = 0, normals = 0, texcoords = 0, faces = 0, corners = 0;
-    std::vector<std::size_t> skinWeights;  // where each "vw" statement begins
-    bool hasMtllib = false;
-    std::vector<std::string> usemtlNames;
-    std::size_t freeLineBegin = std::string::npos, freeLineEnd = 0;  // a blank or comment line before any usemtl
+// vitrum reads OBJ files as tinyobjloader 2.0 (Debian 12) read them, which its images were made
+// from: the same numbers, indices, shapes and materials (docs/gpu-design.md, "The OBJ parsed on
+// every core"). The functions named tinyobj* do what its functions of those names do.
+
+// tryParseDouble, step for step: it is not correctly rounded (a digit at a time into a double),
+// and a coordinate read correctly rounded could differ from it in its float's last bit.
+bool tinyobjDouble(const char* s, const char* s_end, double* result) {
+    if (s >= s_end) return false;
+    double mantissa = 0.0;
+    int exponent = 0;
+    char sign = '+';
+    char exp_sign = '+';
+    const char* curr = s;
+    int read = 0;
+    bool end_not_reached = false;
+    bool leading_decimal_dots = false;
+    auto isDigit = [](char c) { return static_cast<unsigned int>(c - '0') < 10u; };
+
+    if (*curr == '+' || *curr == '-') {
+        sign = *curr;
+        curr++;
+        if ((curr != s_end) && (*curr == '.')) leading_decimal_dots = true;
+    } else if (isDigit(*curr)) {
+    } else if (*curr == '.') {
+        leading_decimal_dots = true;
+    } else {
+        return false;
+    }
+    end_not_reached = (curr != s_end);
+    if (!leading_decimal_dots) {
+        while (end_not_reached && isDigit(*curr)) {
+            mantissa *= 10;
+            mantissa += static_cast<int>(*curr - 0x30);
+            curr++;
+            read++;
+            end_not_reached = (curr != s_end);
+        }
+        if (read == 0) return false;
+    }
+    if (!end_not_reached) goto assemble;
+    if (*curr == '.') {
+        curr++;
+        read = 1;
+        end_not_reached = (curr != s_end);
+        while (end_not_reached && isDigit(*curr)) {
+            static const double pow_lut[] = {1.0, 0.1, 0.01, 0.001, 0.0001, 0.00001, 0.000001, 0.0000001};
+            const int lut_entries = sizeof pow_lut / sizeof pow_lut[0];
+            mantissa += static_cast<int>(*curr - 0x30) * (read < lut_entries ? pow_lut[read] : std::pow(10.0, -read));
+            read++;
+            curr++;
+            end_not_reached = (curr != s_end);
+        }
+    } else if (*curr == 'e' || *curr == 'E') {
+    } else {
+        goto assemble;
+    }
+    if (!end_not_reached) goto assemble;
+    if (*curr == 'e' || *curr == 'E') {
+        curr++;
+        end_not_reached = (curr != s_end);
+        // *curr at s_end is a space, '\n' or the text's closing '\0': no digit, as in tinyobj's line.
+        if (end_not_reached && (*curr == '+' || *curr == '-')) {
+            exp_sign = *curr;
+            curr++;
+        } else if (isDigit(*curr)) {
+        } else {
+            return false;
+        }
+        read = 0;
+        end_not_reached = (curr != s_end);
+        while (end_not_reached && isDigit(*curr)) {
+            if (exponent > (2147483647 / 10)) return false;
+            exponent *= 10;
+            exponent += static_cast<int>(*curr - 0x30);
+            curr++;
+            read++;
+            end_not_reached = (curr != s_end);
+        }
+        exponent *= (exp_sign == '+' ? 1 : -1);
+        if (read == 0) return false;
+    }
+assemble:
+    *result = (sign == '+' ? 1 : -1) * (exponent ? std::ldexp(mantissa * std::pow(5.0, exponent), exponent) : mantissa);
+    return true;
+}
+
+// parseReal: the next word of the line, `fallback` where it is no number.
+float tinyobjReal(const char*& at, const char* lineEnd, double fallback = 0.0) {
+    while (at < lineEnd && isBlank(*at)) ++at;
+    const char* end = at;
+    while (end < lineEnd && !isBlank(*end)) ++end;
+    double value = fallback;
+    tinyobjDouble(at, end, &value);
+    at = end;
+    return static_cast<float>(value);
+}
+
+// atoi as glibc's (strtol, then int): it skips white space first, so that "f 1/ 2 3" reads the
+// texture coordinate of its first corner from the word after it.
+int tinyobjAtoi(const char* at, const char* lineEnd) {
+    while (at < lineEnd && (isBlank(*at) || *at == '\v' || *at == '\f')) ++at;
+    bool negative = false;
+    if (at < lineEnd && (*at == '+' || *at == '-')) negative = *at++ == '-';
+    unsigned long long magnitude = 0;
+    bool beyond = false;
+    for (; at < lineEnd && *at >= '0' && *at <= '9'; ++at) {
+        if (magnitude > (ULLONG_MAX - 9) / 10) beyond = true;
+        if (!beyond) magnitude = magnitude * 10 + unsigned(*at - '0');
+    }
+    const unsigned long long limit = negative ? (unsigned long long)LONG_MAX + 1 : (unsigned long long)LONG_MAX;
+    long value = 0;
+    if (beyond || magnitude > limit) value = negative ? LONG_MIN : LONG_MAX;
+    else value = negative ? long(0 - magnitude) : long(magnitude);
+    return static_cast<int>(value);  // the low 32 bits, as GCC converts
+}
+
+// parseTriple's reading of one corner "v", "v/vt", "v//vn" or "v/vt/vn", moving `at` past it:
+// the atoi values (0 where a part is absent), or false where a present one is 0.
+bool tinyobjCorner(const char*& at, const char* lineEnd, int (&index)[3]) {
+    auto next = [&] {  // strcspn(at, "/ \t\r")
+        while (at < lineEnd && *at != '/' && !isBlank(*at)) ++at;
+    };
+    auto peek = [&] { return at < lineEnd ? *at : '\0'; };
+    index[0] = index[1] = index[2] = 0;
+    if ((index[0] = tinyobjAtoi(at, lineEnd)) == 0) return false;
+    next();
+    if (peek() != '/') return true;
+    ++at;
+    if (peek() == '/') {
+        ++at;
+        if ((index[2] = tinyobjAtoi(at, lineEnd)) == 0) return false;
+        next();
+        return true;
+    }
+    if ((index[1] = tinyobjAtoi(at, lineEnd)) == 0) return false;
+    next();
+    if (peek() != '/') return true;
+    ++at;
+    if ((index[2] = tinyobjAtoi(at, lineEnd)) == 0) return false;
+    next();
+    return true;
+}
+
+// A face corner's vertex, texture coordinate and normal, 0-based; -1 for none.
+struct Corner {
+    int v = -1, vt = -1, vn = -1;
 };
 
-// Scans the whole lines text[from, to), which follow `linesBefore` lines.
-ObjScan scanLines(const fs::path& file, std::string_view text, std::size_t from, std::size_t to, int linesBefore) {
-    ObjScan scan;
+// What changes the shape or the material of the faces after it, in file order: tinyobjloader
+// starts a shape at each o and g, and a usemtl sets the material of the faces that follow.
+struct ObjEvent {
+    enum Kind : std::uint8_t { Usemtl, Mtllib, Object, Group, Degenerate, LinesOrPoints } kind;
+    int line = 0;
+    std::size_t face = 0;  // the faces of three corners or more before it in its part
+    std::string name;      // usemtl's material, o's or g's name
+    std::vector<std::string> files;  // mtllib's
+    bool emptyGroup = false;         // a g without a name, which tinyobjloader warns of
+};
+
+// One part of the file, read from a line's start: what the checks found (the first error, the
+// statements counted) and what tinyobjloader would have read from it.
+struct ObjPart {
+    std::size_t vertices = 0, normals = 0, texcoords = 0, skinWeights = 0;
+    bool hasMtllib = false;
+    std::vector<std::string> usemtlNames;
+    int freeLine = -1;  // a blank or comment line before any usemtl: where an mtllib can go
+    std::vector<float> positions, normalValues, uvs;  // three, three and two a statement
+    std::vector<Corner> corners;                      // of the faces of three corners or more
+    std::vector<std::uint32_t> faceEnds;              // where each face's corners end in `corners`
+    std::vector<std::uint64_t> relative;  // 3 * corner + (0 v, 1 vt, 2 vn): negative indices, from the part's start
+    std::vector<ObjEvent> events;
+    std::exception_ptr error;  // the first of vitrum's checks that failed
+    int readerErrorLine = 0;   // the first line tinyobjloader refused (0: none), and its message
+    std::string readerError;
+};
+
+// Checks and reads the whole lines text[from, to), which follow `linesBefore` lines; `progress`
+// (the calling thread's part) is told each of `reports` fractions of the file in turn.
+void readLines(const fs::path& file, const std::string& text, std::size_t from, std::size_t to, int linesBefore,
+               ObjPart& part, const std::function<void(double)>& progress, std::size_t reports) {
     bool seenUsemtl = false;
     int lineNumber = linesBefore;
+    std::size_t reported = 0, nextReport = progress && reports ? from : std::string::npos;
+    auto report = [&](std::size_t at) {
+        for (; reported < reports && at >= from + (to - from) * reported / reports; ++reported)
+            progress(double(reported << 20) / double(text.size()));
+        nextReport = reported < reports ? from + (to - from) * reported / reports : std::string::npos;
+    };
+    auto readerError = [&](const char* statement, const char* what) {
+        if (part.readerErrorLine) return;
+        part.readerErrorLine = lineNumber;
+        part.readerError = std::string("Failed parse `") + statement + "' line(e.g. zero value for " + what +
+                           " index. line " + std::to_string(lineNumber) + ".)";
+    };
+    auto index = [&](int value, std::size_t count, std::size_t corner, int which) {
+        if (value > 0) return value - 1;
+        part.relative.push_back(3 * std::uint64_t(corner) + std::uint64_t(which));
+        return int(std::int64_t(count) + value);  // fixIndex; the part's start is added later
+    };
     for (std::size_t begin = from; begin < to;) {
+        if (begin >= nextReport) report(begin);
         std::size_t end = std::min(text.find('\n', begin), text.size());
-        std::string_view line = text.substr(begin, end - begin);  // readInputLines ended every line in '\n'
+        std::string_view line = std::string_view(text).substr(begin, end - begin);  // no '\r' (readInputLines)
+        const char* lineEnd = text.data() + end;
         ++lineNumber;
         std::size_t wordEnd = 0;
         std::string_view word = firstWord(line, &wordEnd);
+        // vitrum's checks first: what tinyobjloader would read as 0, read with an overflow, or
+        // wrap around is an error with its line.
         if (word.empty() || word.front() == '#') {
-            if (!seenUsemtl && scan.freeLineBegin == std::string::npos) {
-                scan.freeLineBegin = begin;
-                scan.freeLineEnd = begin + line.size();
-            }
+            if (!seenUsemtl && part.freeLine < 0) part.freeLine = lineNumber;
         } else if (word == "v") {
-            ++scan.vertices;
+            ++part.vertices;
             std::string_view rest = line.substr(wordEnd);
             for (int i = 0; i < 3; ++i) {
                 std::size_t numberEnd = 0;
@@ -127,39 +282,33 @@ ObjScan scanLines(const fs::path& file, std::string_view text, std::size_t from,
                 rest = rest.substr(numberEnd);
             }
         } else if (word == "f") {
-            // tinyobjloader reads indices with atoi, which stops where a number does ("1.5" is
-            // vertex 1) and wraps one beyond the int range around ("4294967299" is vertex 3): each
-            // index must be an integer in full, in the int range.
-            std::size_t corners = 0;
+            // atoi stops where a number does ("1.5" is vertex 1) and wraps one beyond the int
+            // range around ("4294967299" is vertex 3): each index must be an integer in full, in
+            // the int range.
             for (std::string_view rest = line.substr(wordEnd);;) {
                 std::size_t cornerEnd = 0;
                 std::string_view corner = firstWord(rest, &cornerEnd);
                 if (corner.empty()) break;
-                ++corners;
-                for (std::size_t part = 0; part <= corner.size();) {
-                    std::size_t slash = std::min(corner.find('/', part), corner.size());
-                    std::string_view index = corner.substr(part, slash - part);
-                    if (!index.empty() && index.front() == '+') index.remove_prefix(1);
+                for (std::size_t at = 0; at <= corner.size();) {
+                    std::size_t slash = std::min(corner.find('/', at), corner.size());
+                    std::string_view number = corner.substr(at, slash - at);
+                    if (!number.empty() && number.front() == '+') number.remove_prefix(1);
                     long long value = 0;
-                    auto [ptr, ec] = std::from_chars(index.data(), index.data() + index.size(), value);
+                    auto [ptr, ec] = std::from_chars(number.data(), number.data() + number.size(), value);
                     if (ec == std::errc::result_out_of_range || value > std::numeric_limits<int>::max() ||
                         value < -std::numeric_limits<int>::max())
-                        throw inputError(file, lineNumber, "face index " + quoteInput(index) + " is out of range");
-                    if (ptr != index.data() + index.size())  // an empty one tinyobjloader reports as 0
+                        throw inputError(file, lineNumber, "face index " + quoteInput(number) + " is out of range");
+                    if (ptr != number.data() + number.size())  // an empty one tinyobjloader reports as 0
                         throw inputError(file, lineNumber, "face corner " + quoteInput(corner) +
                                                                " is not v, v/vt, v//vn or v/vt/vn in integers");
-                    part = slash + 1;
+                    at = slash + 1;
                 }
                 rest = rest.substr(cornerEnd);
             }
-            if (corners >= 3) {  // tinyobjloader drops a face of fewer, with a warning
-                ++scan.faces;
-                scan.corners += corners;
-            }
         } else if (word == "vn" || word == "vt" || word == "vp") {
-            if (word == "vn") ++scan.normals;
-            if (word == "vt") ++scan.texcoords;
-            // tinyobjloader reads an exponent into an int that overflows (undefined behaviour) at
+            if (word == "vn") ++part.normals;
+            if (word == "vt") ++part.texcoords;
+            // tinyobjloader read an exponent into an int that overflowed (undefined behaviour) at
             // ten digits or more (found by fuzzing); such a number is 0 or infinite anyway. It
             // reads a normal's or a texture coordinate's word that is no number as 0, without an
             // error: those must be numbers, three for vn and one to three for vt.
@@ -185,95 +334,155 @@ ObjScan scanLines(const fs::path& file, std::string_view text, std::size_t from,
             if (word == "vt" && numbers < 1)
                 throw inputError(file, lineNumber, "vt expects one to three numbers, got " + quoteInput(line));
         } else if (word == "vw") {
-            scan.skinWeights.push_back(begin + std::size_t(word.data() - line.data()));
+            // Skin weights ("vw", tinyobjloader's extension) mean nothing to a ray tracer, and
+            // tinyobjloader converted their joint numbers to int unchecked (undefined behaviour
+            // beyond the int range, found by fuzzing): they are ignored, with a warning.
+            ++part.skinWeights;
+            begin = end + 1;
+            continue;
         } else if (word == "mtllib") {
-            scan.hasMtllib = true;
+            part.hasMtllib = true;
         } else if (word == "usemtl") {
             seenUsemtl = true;
-            scan.usemtlNames.emplace_back(firstWord(line.substr(wordEnd)));
+            part.usemtlNames.emplace_back(firstWord(line.substr(wordEnd)));
         }
+
+        // Then the statement as tinyobjloader's LoadObj reads it: by its first characters.
+        const char* token = line.data() + (word.empty() ? line.size() : std::size_t(word.data() - line.data()));
+        auto at = [&](std::size_t k) { return token + k < lineEnd ? token[k] : '\0'; };
+        const ObjEvent::Kind noEvent = ObjEvent::Kind(255);
+        ObjEvent event{noEvent, lineNumber, part.faceEnds.size(), {}, {}, false};
+        if (at(0) == 'v' && isBlank(at(1))) {
+            const char* p = token + 2;
+            for (int i = 0; i < 3; ++i) part.positions.push_back(tinyobjReal(p, lineEnd));
+        } else if (at(0) == 'v' && at(1) == 'n' && isBlank(at(2))) {
+            const char* p = token + 3;
+            for (int i = 0; i < 3; ++i) part.normalValues.push_back(tinyobjReal(p, lineEnd));
+        } else if (at(0) == 'v' && at(1) == 't' && isBlank(at(2))) {
+            const char* p = token + 3;
+            for (int i = 0; i < 2; ++i) part.uvs.push_back(tinyobjReal(p, lineEnd));
+        } else if ((at(0) == 'f' || at(0) == 'l' || at(0) == 'p') && isBlank(at(1))) {
+            const char kind = at(0);
+            const char* p = token + 2;
+            if (kind == 'f')
+                while (p < lineEnd && isBlank(*p)) ++p;
+            const std::size_t first = part.corners.size();
+            std::size_t count = 0;
+            bool failed = false;
+            while (p < lineEnd) {
+                int raw[3];
+                if (!tinyobjCorner(p, lineEnd, raw)) {
+                    readerError(kind == 'f' ? "f" : kind == 'l' ? "l" : "p", kind == 'f' ? "face" : "vertex");
+                    failed = true;
+                    break;
+                }
+                if (kind == 'f') {
+                    // Vertices, texture coordinates and normals read so far (in this part).
+                    const std::size_t c = first + count;
+                    part.corners.push_back({index(raw[0], part.vertices, c, 0),
+                                            raw[1] ? index(raw[1], part.texcoords, c, 1) : -1,
+                                            raw[2] ? index(raw[2], part.normals, c, 2) : -1});
+                }
+                ++count;
+                while (p < lineEnd && isBlank(*p)) ++p;
+            }
+            if (kind == 'f' && !failed && count >= 3) {
+                part.faceEnds.push_back(std::uint32_t(part.corners.size()));
+            } else if (kind == 'f') {  // a degenerate face (tinyobjloader warns of it), or one refused
+                while (!part.relative.empty() && part.relative.back() >= 3 * std::uint64_t(first)) part.relative.pop_back();
+                part.corners.resize(first);
+                if (!failed) event.kind = ObjEvent::Degenerate;
+            } else if (count > 0) {
+                event.kind = ObjEvent::LinesOrPoints;
+            }
+        } else if (std::string_view(token, std::size_t(lineEnd - token)).starts_with("usemtl")) {
+            event.kind = ObjEvent::Usemtl;
+            const char* p = token + 6;
+            while (p < lineEnd && isBlank(*p)) ++p;
+            const char* e = p;
+            while (e < lineEnd && !isBlank(*e)) ++e;
+            event.name.assign(p, e);
+        } else if (std::string_view(token, std::size_t(lineEnd - token)).starts_with("mtllib") && isBlank(at(6))) {
+            // SplitString(rest, ' ', '\\'): names apart at spaces, a backslash escaping the next
+            // character; the last name is kept even when empty.
+            event.kind = ObjEvent::Mtllib;
+            std::string name;
+            bool escaping = false;
+            for (const char* p = token + 7; p < lineEnd; ++p) {
+                if (escaping) {
+                    escaping = false;
+                } else if (*p == '\\') {
+                    escaping = true;
+                    continue;
+                } else if (*p == ' ') {
+                    if (!name.empty()) event.files.push_back(name);
+                    name.clear();
+                    continue;
+                }
+                name += *p;
+            }
+            event.files.push_back(name);
+        } else if (at(0) == 'g' && isBlank(at(1))) {
+            // The words after g, one space between them.
+            event.kind = ObjEvent::Group;
+            std::size_t words = 0;
+            for (const char* p = token; p < lineEnd;) {
+                while (p < lineEnd && isBlank(*p)) ++p;
+                const char* e = p;
+                while (e < lineEnd && !isBlank(*e)) ++e;
+                if (e == p) break;
+                if (words++ > 1) event.name += ' ';
+                if (words > 1) event.name.append(p, e);
+                p = e;
+            }
+            event.emptyGroup = words < 2;
+        } else if (at(0) == 'o' && isBlank(at(1))) {
+            event.kind = ObjEvent::Object;
+            event.name.assign(token + 2, lineEnd);
+        }
+        if (event.kind != noEvent) part.events.push_back(std::move(event));
         begin = end + 1;
     }
-    return scan;
+    if (progress) report(to);
 }
 
-// The scan of a big file in parts, one a core, each from a line's start: the parts' counts and
-// statements joined in order, and the error of the first part that has one, which is the file's
-// first (issue 52; docs/gpu-design.md, "A big model to the image as fast as an Embree renderer").
-ObjScan scanObj(const fs::path& file, std::string_view text) {
+// The file in parts, one a core, each from a line's start, read at once: the first error, in
+// the file's order, is the first part's that has one (issue 52; docs/gpu-design.md, "A big model
+// to the image as fast as an Embree renderer" and "The OBJ parsed on every core").
+std::vector<ObjPart> readParts(const fs::path& file, const std::string& text, std::size_t parts,
+                               const std::function<void(double)>& progress) {
     constexpr std::size_t kBytesAPart = std::size_t(16) << 20;
-    const std::size_t parts = std::clamp<std::size_t>(text.size() / kBytesAPart, 1, std::max(1u, std::thread::hardware_concurrency()));
+    if (parts == 0) parts = std::clamp<std::size_t>(text.size() / kBytesAPart, 1, std::max(1u, std::thread::hardware_concurrency()));
     std::vector<std::size_t> starts = {0};
     for (std::size_t k = 1; k < parts; ++k) {
         const std::size_t lineEnd = text.find('\n', std::max(starts.back(), text.size() * k / parts));
         starts.push_back(lineEnd == std::string_view::npos ? text.size() : lineEnd + 1);
     }
     starts.push_back(text.size());
-    std::vector<ObjScan> scans(parts);
-    std::vector<std::exception_ptr> failed(parts);
-    auto scanPart = [&](std::size_t k) {
+    // A progress call a megabyte of text, as when tinyobjloader read it in chunks of one.
+    const std::size_t reports = (text.size() + (std::size_t(1) << 20) - 1) >> 20;
+    std::vector<ObjPart> read(parts);
+    auto readPart = [&](std::size_t k) {
         try {
             const int linesBefore = int(std::count(text.begin(), text.begin() + std::ptrdiff_t(starts[k]), '\n'));
-            scans[k] = scanLines(file, text, starts[k], starts[k + 1], linesBefore);
+            readLines(file, text, starts[k], starts[k + 1], linesBefore, read[k], k == 0 ? progress : nullptr, reports);
         } catch (...) {
-            failed[k] = std::current_exception();
+            read[k].error = std::current_exception();
         }
     };
     std::vector<std::thread> threads;
-    for (std::size_t k = 1; k < parts; ++k) threads.emplace_back(scanPart, k);
-    scanPart(0);
+    try {
+        for (std::size_t k = 1; k < parts; ++k) threads.emplace_back(readPart, k);
+    } catch (...) {  // a thread that cannot start (no memory for its stack): those started end first
+        for (std::thread& t : threads) t.join();
+        throw;
+    }
+    readPart(0);
     for (std::thread& t : threads) t.join();
-    for (const std::exception_ptr& e : failed)
-        if (e) std::rethrow_exception(e);
-
-    ObjScan scan = std::move(scans[0]);
-    bool usemtlBefore = !scan.usemtlNames.empty();
-    for (std::size_t k = 1; k < parts; ++k) {
-        ObjScan& part = scans[k];
-        scan.vertices += part.vertices;
-        scan.normals += part.normals;
-        scan.texcoords += part.texcoords;
-        scan.faces += part.faces;
-        scan.corners += part.corners;
-        scan.skinWeights.insert(scan.skinWeights.end(), part.skinWeights.begin(), part.skinWeights.end());
-        scan.hasMtllib = scan.hasMtllib || part.hasMtllib;
-        // A part's free line counts if no usemtl came before it in the file.
-        if (scan.freeLineBegin == std::string::npos && !usemtlBefore) {
-            scan.freeLineBegin = part.freeLineBegin;
-            scan.freeLineEnd = part.freeLineEnd;
-        }
-        usemtlBefore = usemtlBefore || !part.usemtlNames.empty();
-        scan.usemtlNames.insert(scan.usemtlNames.end(), std::make_move_iterator(part.usemtlNames.begin()),
-                                std::make_move_iterator(part.usemtlNames.end()));
-    }
-    return scan;
+    for (const ObjPart& part : read)
+        if (part.error) std::rethrow_exception(part.error);
+    return read;
 }
-
-// Hands tinyobjloader the names of our own materials (parsed by mtl_parser with line numbers),
-// so that its material ids map back to scene materials.
-class LibraryReader : public tinyobj::MaterialReader {
-public:
-    using Lookup = std::function<const std::map<std::string, std::uint32_t>*(const std::string& mtllib)>;
-    explicit LibraryReader(Lookup lookup) : lookup_(std::move(lookup)) {}
-
-    bool operator()(const std::string& mtllib, std::vector<tinyobj::material_t>* materials,
-                    std::map<std::string, int>* names, std::string*, std::string*) override {
-        if (const auto* library = lookup_(mtllib)) {
-            for (const auto& [name, index] : *library) {
-                if (names->count(name)) continue;
-                (*names)[name] = int(materials->size());
-                materials->emplace_back().name = name;
-                sceneIndex.push_back(index);
-            }
-        }
-        return true;  // a missing library was reported by lookup_; tinyobj need not say it again
-    }
-
-    std::vector<std::uint32_t> sceneIndex;  // tinyobj material id -> index in Scene::materials
-
-private:
-    Lookup lookup_;
-};
 
 // The file's canonical path, where the file system gives one, as the key of the files read
 // once: a name it refuses (one longer than NAME_MAX, found by fuzzing) is its own key, and the
@@ -335,203 +544,265 @@ std::uint32_t ObjLoader::defaultMaterialIndex() {
 
 void ObjLoader::load(const fs::path& objFile, const ObjOptions& options) {
     std::string text = readText(objFile);
-    ObjScan scan = scanObj(objFile, text);
-    // A face of n corners makes n - 2 triangles (fanned below).
-    if (options_.checkTriangles) options_.checkTriangles(scene_.triangles.size() + scan.corners - 2 * scan.faces);
-    // Skin weights ("vw", tinyobjloader's extension of OBJ) mean nothing to a ray tracer, and
-    // tinyobjloader converts their joint numbers to int unchecked (undefined behaviour beyond
-    // the int range, found by fuzzing): they become comments, and the lines keep their numbers.
-    for (std::size_t at : scan.skinWeights) text[at] = '#';
-    if (!scan.skinWeights.empty())
-        warn(objFile.string() + ": " + std::to_string(scan.skinWeights.size()) + " skin weight (vw) lines ignored");
-    if (options.mtlOverride && !scan.hasMtllib) {
-        // The override comes in through tinyobj's mtllib hook: give it an mtllib statement on a
-        // free line, so that tinyobj's line numbers stay those of the file.
-        if (scan.freeLineBegin != std::string::npos)
-            text.replace(scan.freeLineBegin, scan.freeLineEnd - scan.freeLineBegin, "mtllib override");
-        else
-            text.insert(0, "mtllib override\n");
-    }
-
-    std::set<std::string> knownNames;
-    LibraryReader reader([&](const std::string& mtllib) -> const Library* {
-        fs::path mtlFile = options.mtlOverride ? *options.mtlOverride : objFile.parent_path() / mtllib;
-        std::error_code ec;
-        if (!fs::exists(mtlFile, ec)) {  // one that exists but is no regular file is refused when read
-            warn(objFile.string() + ": material library \"" + mtlFile.string() +
-                 "\" not found; its faces get the default material");
-            return nullptr;
-        }
-        const Library& found = library(mtlFile);
-        for (const auto& entry : found) knownNames.insert(entry.first);
-        return &found;
-    });
-
-    tinyobj::attrib_t attrib;
-    std::vector<tinyobj::shape_t> shapes;
-    std::vector<tinyobj::material_t> tinyMaterials;
-    std::string warnings, errors;
     const std::string fileName = objFile.filename().string();
     auto report = [&](const std::string& phase) -> std::function<void(double)> {
         if (!options_.progress) return {};
         return [this, phase](double fraction) { options_.progress(phase, fraction); };
     };
-    TextStream textStream(text, report("parsing " + fileName));
-    std::istream stream(&textStream);
-    // No triangulation by tinyobj: it reads vertices of quads and polygons before any index check.
-    bool ok = tinyobj::LoadObj(&attrib, &shapes, &tinyMaterials, &warnings, &errors, &stream, &reader, false);
-    auto oneLine = [](std::string s) {
-        std::replace(s.begin(), s.end(), '\n', ' ');
-        return std::string(s.begin(), std::find_if(s.rbegin(), s.rend(), [](char c) { return c != ' '; }).base());
+    std::vector<ObjPart> parts = readParts(objFile, text, options.parts, report("parsing " + fileName));
+    std::string().swap(text);  // the parts hold what is needed of it
+
+    // Each part's statements counted from its start: where the part's begin in the file's.
+    struct Base {
+        std::size_t vertices = 0, normals = 0, texcoords = 0, faces = 0, corners = 0, triangles = 0;
     };
-    if (!ok || !errors.empty()) throw inputError(objFile, 0, oneLine(errors.empty() ? "unreadable OBJ" : errors));
-    std::istringstream warningLines(warnings);
-    for (std::string w; std::getline(warningLines, w);) {
-        w.erase(0, w.find_first_not_of(". "));  // tinyobj ends some warnings with "\n."
-        // Unknown material names are reported below with their names; index checks are ours.
-        if (!w.empty() && w.find("not found in .mtl") == std::string::npos &&
-            w.find("out of bounds") == std::string::npos)
-            warn(objFile.string() + ": " + w);
+    std::vector<Base> bases(parts.size() + 1);
+    std::size_t skinWeights = 0;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+        const ObjPart& part = parts[k];
+        const std::size_t faces = part.faceEnds.size(), corners = part.corners.size();
+        bases[k + 1] = {bases[k].vertices + part.vertices, bases[k].normals + part.normals, bases[k].texcoords + part.texcoords,
+                        bases[k].faces + faces,            bases[k].corners + corners,    bases[k].triangles + corners - 2 * faces};
+        skinWeights += part.skinWeights;
     }
-    for (const std::string& name : scan.usemtlNames) {
-        if (!knownNames.count(name))
-            warn(objFile.string() + ": material " + quoteInput(name) +
-                 " is not defined; its faces get the default material");
+    const Base& all = bases.back();
+    if (options_.checkTriangles) options_.checkTriangles(scene_.triangles.size() + all.triangles);
+    if (skinWeights) warn(objFile.string() + ": " + std::to_string(skinWeights) + " skin weight (vw) lines ignored");
+
+    // Materials, shapes and their names in the file's order, as tinyobjloader made them: a usemtl
+    // names a material of the libraries read before it; o and g end a shape, which is kept if it
+    // has faces (or, at an o, lines or points: it still counts in the names "shapeN").
+    bool hasMtllib = false;
+    for (const ObjPart& part : parts) hasMtllib = hasMtllib || part.hasMtllib;
+    int overrideLine = -1;  // the override's library is read at the line of a first free line
+    if (options.mtlOverride && !hasMtllib) {
+        overrideLine = 0;  // or before the first line
+        for (const ObjPart& part : parts) {
+            if (part.freeLine >= 0) {
+                overrideLine = part.freeLine;
+                break;
+            }
+            if (!part.usemtlNames.empty()) break;
+        }
     }
+    std::set<std::string> knownNames;
+    std::map<std::string, int> materialIds;  // tinyobjloader's material ids: by the libraries' order
+    std::vector<std::uint32_t> sceneIndex;   // material id -> index in Scene::materials
+    std::set<std::string> librariesRead;
+    auto readLibrary = [&](const std::string& mtllib) {
+        fs::path mtlFile = options.mtlOverride ? *options.mtlOverride : objFile.parent_path() / mtllib;
+        std::error_code ec;
+        if (!fs::exists(mtlFile, ec)) {  // one that exists but is no regular file is refused when read
+            warn(objFile.string() + ": material library \"" + mtlFile.string() +
+                 "\" not found; its faces get the default material");
+            return;
+        }
+        for (const auto& [name, index] : library(mtlFile)) {
+            knownNames.insert(name);
+            if (materialIds.count(name)) continue;
+            materialIds[name] = int(sceneIndex.size());
+            sceneIndex.push_back(index);
+        }
+    };
+    struct Shape {
+        std::string name;
+        std::size_t firstFace = 0, endFace = 0;
+    };
+    std::vector<Shape> shapes;
+    std::vector<std::pair<std::size_t, int>> materialRuns = {{0, -1}};  // from a face on, a material id
+    std::vector<std::string> readerWarnings;
+    std::size_t shapeCount = 0;  // tinyobjloader's shapes, those without triangles too
+    std::string name;
+    std::size_t shapeFirstFace = 0;
+    bool linesOrPoints = false;
+    auto endShape = [&](std::size_t face, bool keepWithLines) {
+        if (face > shapeFirstFace || (keepWithLines && linesOrPoints)) {
+            if (face > shapeFirstFace) {
+                std::string shown = name.substr(0, name.find_last_not_of(" \t\r") + 1);
+                if (shown.empty()) shown = "shape" + std::to_string(shapeCount);
+                shapes.push_back({std::move(shown), shapeFirstFace, face});
+            }
+            ++shapeCount;
+        }
+        shapeFirstFace = face;
+        linesOrPoints = false;
+    };
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+        for (const ObjEvent& event : parts[k].events) {
+            if (parts[k].readerErrorLine && event.line > parts[k].readerErrorLine) break;
+            if (overrideLine >= 0 && event.line > overrideLine) {
+                readLibrary("override");
+                overrideLine = -1;
+            }
+            const std::size_t face = bases[k].faces + event.face;
+            switch (event.kind) {
+            case ObjEvent::Usemtl: {
+                const auto found = materialIds.find(event.name);
+                const int id = found == materialIds.end() ? -1 : found->second;
+                if (materialRuns.back().first == face) materialRuns.back().second = id;
+                else if (materialRuns.back().second != id) materialRuns.emplace_back(face, id);
+                break;
+            }
+            case ObjEvent::Mtllib:
+                for (const std::string& library : event.files) {
+                    if (librariesRead.count(library)) continue;
+                    readLibrary(library);
+                    librariesRead.insert(library);
+                    break;
+                }
+                break;
+            case ObjEvent::Object:
+            case ObjEvent::Group:
+                endShape(face, event.kind == ObjEvent::Object);
+                name = event.name;
+                if (event.emptyGroup) readerWarnings.push_back("Empty group name. line: " + std::to_string(event.line));
+                break;
+            case ObjEvent::Degenerate:
+                readerWarnings.emplace_back("Degenerated face found");
+                break;
+            case ObjEvent::LinesOrPoints:
+                linesOrPoints = true;
+                break;
+            }
+        }
+        if (parts[k].readerErrorLine) {
+            if (overrideLine >= 0 && overrideLine < parts[k].readerErrorLine) readLibrary("override");
+            throw inputError(objFile, 0, parts[k].readerError);
+        }
+    }
+    if (overrideLine >= 0) readLibrary("override");
+    endShape(all.faces, false);
+    for (const std::string& w : readerWarnings) warn(objFile.string() + ": " + w);
+    for (const ObjPart& part : parts)
+        for (const std::string& usemtl : part.usemtlNames)
+            if (!knownNames.count(usemtl))
+                warn(objFile.string() + ": material " + quoteInput(usemtl) +
+                     " is not defined; its faces get the default material");
+
+    // The vertices, normals and texture coordinates of all parts in one array each, and each
+    // negative index counted from the part's start counted from the file's.
+    auto gather = [&](std::vector<float> ObjPart::*values) {
+        std::vector<float> gathered;
+        std::size_t size = 0;
+        for (const ObjPart& part : parts) size += (part.*values).size();
+        gathered.reserve(size);
+        for (ObjPart& part : parts) {
+            gathered.insert(gathered.end(), (part.*values).begin(), (part.*values).end());
+            std::vector<float>().swap(part.*values);
+        }
+        return gathered;
+    };
+    const std::vector<float> positions = gather(&ObjPart::positions);
+    const std::vector<float> normals = gather(&ObjPart::normalValues);
+    const std::vector<float> uvs = gather(&ObjPart::uvs);
+    for (std::size_t k = 1; k < parts.size(); ++k)
+        for (std::uint64_t at : parts[k].relative) {
+            Corner& c = parts[k].corners[at / 3];
+            int& index = at % 3 == 0 ? c.v : at % 3 == 1 ? c.vt : c.vn;
+            const std::size_t base = at % 3 == 0 ? bases[k].vertices : at % 3 == 1 ? bases[k].texcoords : bases[k].normals;
+            index = int(std::int64_t(index) + std::int64_t(base));
+        }
 
     const glm::mat4& m = options.transform;
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
     const bool mirrored = glm::determinant(glm::mat3(m)) < 0.0f;  // keep the winding outward-facing
-    const int vertexCount = int(attrib.vertices.size() / 3);
-    const int normalCount = int(attrib.normals.size() / 3);
-    const int uvCount = int(attrib.texcoords.size() / 2);
-    std::size_t faceCount = 0, cornerCount = 0;
-    for (const tinyobj::shape_t& shape : shapes) {
-        faceCount += shape.mesh.num_face_vertices.size();
-        cornerCount += shape.mesh.indices.size();
-    }
-    for (const auto& [kind, read, lines] : {std::tuple{"vertices", std::size_t(vertexCount), scan.vertices},
-                                            std::tuple{"normals", std::size_t(normalCount), scan.normals},
-                                            std::tuple{"texture coordinates", std::size_t(uvCount), scan.texcoords},
-                                            std::tuple{"faces", faceCount, scan.faces},
-                                            std::tuple{"face corners", cornerCount, scan.corners}})
-        if (read != lines)
-            throw inputError(objFile, 0, std::string("the OBJ reader returned ") + std::to_string(read) + " " + kind +
-                                             " where the file has " + std::to_string(lines) +
-                                             " statements for them: some line is not what it seems");
+    const int vertexCount = int(positions.size() / 3);
+    const int normalCount = int(normals.size() / 3);
+    const int uvCount = int(uvs.size() / 2);
     const std::size_t firstTriangle = scene_.triangles.size();
 
-    // Where each face's corners and triangles begin (a fan of n corners makes n - 2), shape by
-    // shape, and each shape's object: the faces then become triangles on every core, each in its
-    // place (issue 52: one core took 0.4-0.6 s for a 3M-triangle model).
-    struct ShapeFaces {
-        std::vector<std::size_t> firstCorner, firstTriangle;
-        std::uint32_t object = 0;
-        std::string name;
-    };
-    std::vector<ShapeFaces> faces(shapes.size());
-    std::size_t triangleCount = 0;
-    bool defaultNeeded = false;
+    std::vector<std::uint32_t> objects(shapes.size());
     for (std::size_t s = 0; s < shapes.size(); ++s) {
-        const tinyobj::mesh_t& mesh = shapes[s].mesh;
-        ShapeFaces& shape = faces[s];
-        shape.name = shapes[s].name;
-        shape.name.erase(shape.name.find_last_not_of(" \t\r") + 1);
-        if (shape.name.empty()) shape.name = "shape" + std::to_string(s);
-        shape.object = std::uint32_t(scene_.objectNames.size());
-        shape.firstCorner.resize(mesh.num_face_vertices.size());
-        shape.firstTriangle.resize(mesh.num_face_vertices.size());
-        const std::size_t before = triangleCount;
-        std::size_t corner = 0;
-        for (std::size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
-            shape.firstCorner[f] = corner;
-            shape.firstTriangle[f] = firstTriangle + triangleCount;
-            const std::size_t corners = mesh.num_face_vertices[f];
-            corner += corners;
-            if (corners >= 3) triangleCount += corners - 2;
-            const int tinyMaterial = mesh.material_ids[f];
-            defaultNeeded = defaultNeeded || !(tinyMaterial >= 0 && std::size_t(tinyMaterial) < reader.sceneIndex.size());
-        }
-        if (triangleCount > before) scene_.objectNames.push_back(objFile.filename().string() + "/" + shape.name);
+        objects[s] = std::uint32_t(scene_.objectNames.size());
+        scene_.objectNames.push_back(fileName + "/" + shapes[s].name);
+    }
+    bool defaultNeeded = false;
+    for (std::size_t r = 0; r < materialRuns.size(); ++r) {
+        const std::size_t end = r + 1 < materialRuns.size() ? materialRuns[r + 1].first : all.faces;
+        defaultNeeded = defaultNeeded || (materialRuns[r].second < 0 && end > materialRuns[r].first);
     }
     const std::uint32_t defaultMaterial = defaultNeeded ? defaultMaterialIndex() : 0;
     // Room for the file's triangles at once, doubling still, so that many files stay linear.
-    const std::size_t needed = firstTriangle + triangleCount;
+    const std::size_t needed = firstTriangle + all.triangles;
     if (needed > scene_.triangles.capacity()) scene_.triangles.reserve(std::max(needed, 2 * scene_.triangles.capacity()));
     scene_.triangles.resize(needed);
 
+    // The faces become triangles on every core, each in its place (issue 52: one core took
+    // 0.4-0.6 s for a 3M-triangle model); a chunk's first error is the first of its faces, and
+    // parallelFor rethrows the first chunk's: the file's first, as one core found it.
     const std::function<void(double)> triangleProgress = report("triangles of " + fileName);
-    std::size_t facesBefore = 0;
-    for (std::size_t s = 0; s < shapes.size(); ++s) {
-        const tinyobj::mesh_t& mesh = shapes[s].mesh;
-        const ShapeFaces& shape = faces[s];
-        // The faces [begin, end) of this shape; a chunk's first error is the first of its faces, and
-        // parallelFor rethrows the first chunk's: the file's first, as one core found it.
-        parallelFor(mesh.num_face_vertices.size(), [&](std::size_t begin, std::size_t end) {
-            for (std::size_t f = begin; f < end; ++f) {
-                // The calling thread's share tells how far all are (they run alike).
-                if (triangleProgress && begin == 0 && f % 65536 == 0)
-                    triangleProgress((double(facesBefore) + double(f) / double(end) * double(mesh.num_face_vertices.size())) /
-                                     double(std::max<std::size_t>(faceCount, 1)));
-                const std::size_t offset = shape.firstCorner[f];
-                const std::size_t corners = mesh.num_face_vertices[f];
-                for (std::size_t k = 0; k < corners; ++k) {
-                    const tinyobj::index_t& idx = mesh.indices[offset + k];
-                    auto check = [&](int index, int count, bool optional, const char* what) {
-                        if ((optional && index == -1) || (index >= 0 && index < count)) return;
-                        std::string problem = index < 0 ? "an index before the first of its " + std::string(what)
-                                                        : "index " + std::to_string(index + 1) + ", but the file has " +
-                                                              std::to_string(count) + " " + what;
-                        throw inputError(objFile, 0, "a face of " + quoteInput(shape.name) + " uses " + problem);
-                    };
-                    check(idx.vertex_index, vertexCount, false, "vertices");
-                    check(idx.normal_index, normalCount, true, "normals");
-                    check(idx.texcoord_index, uvCount, true, "texture coordinates");
+    parallelFor(all.faces, [&](std::size_t begin, std::size_t end) {
+        std::size_t k = std::size_t(std::upper_bound(bases.begin(), bases.end(), begin,
+                                                     [](std::size_t f, const Base& b) { return f < b.faces; }) -
+                                    bases.begin()) - 1;
+        std::size_t s = std::size_t(std::upper_bound(shapes.begin(), shapes.end(), begin,
+                                                     [](std::size_t f, const Shape& sh) { return f < sh.firstFace; }) -
+                                    shapes.begin()) - 1;
+        std::size_t r = std::size_t(std::upper_bound(materialRuns.begin(), materialRuns.end(), begin,
+                                                     [](std::size_t f, const auto& run) { return f < run.first; }) -
+                                    materialRuns.begin()) - 1;
+        for (std::size_t f = begin; f < end; ++f) {
+            // The calling thread's share tells how far all are (they run alike).
+            if (triangleProgress && begin == 0 && f % 65536 == 0) triangleProgress(double(f) / double(end));
+            while (f >= bases[k + 1].faces) ++k;
+            while (f >= shapes[s].endFace) ++s;
+            while (r + 1 < materialRuns.size() && f >= materialRuns[r + 1].first) ++r;
+            const ObjPart& part = parts[k];
+            const std::size_t local = f - bases[k].faces;
+            const std::size_t offset = local ? part.faceEnds[local - 1] : 0;
+            const std::size_t corners = part.faceEnds[local] - offset;
+            const Corner* corner = part.corners.data() + offset;
+            for (std::size_t c = 0; c < corners; ++c) {
+                if (corner[c].v >= 0 && corner[c].v < vertexCount && corner[c].vn >= -1 && corner[c].vn < normalCount &&
+                    corner[c].vt >= -1 && corner[c].vt < uvCount)
+                    continue;  // in range (-1: none), the checks below pass
+                auto check = [&](int index, int count, bool optional, const char* what) {
+                    if ((optional && index == -1) || (index >= 0 && index < count)) return;
+                    std::string problem = index < 0 ? "an index before the first of its " + std::string(what)
+                                                    : "index " + std::to_string(index + 1) + ", but the file has " +
+                                                          std::to_string(count) + " " + what;
+                    throw inputError(objFile, 0, "a face of " + quoteInput(shapes[s].name) + " uses " + problem);
+                };
+                check(corner[c].v, vertexCount, false, "vertices");
+                check(corner[c].vn, normalCount, true, "normals");
+                check(corner[c].vt, uvCount, true, "texture coordinates");
+            }
+            const int id = materialRuns[r].second;
+            const std::uint32_t material = id >= 0 ? sceneIndex[std::size_t(id)] : defaultMaterial;
+            const std::size_t faceTriangle = firstTriangle + bases[k].triangles + offset - 2 * local;
+            // Fan triangulation: exact for triangles and convex polygons, which is what exporters write.
+            for (std::size_t i = 1; i + 1 < corners; ++i) {
+                std::size_t c[3] = {0, i, i + 1};
+                if (mirrored) std::swap(c[1], c[2]);
+                Triangle& t = scene_.triangles[faceTriangle + i - 1];
+                t.material = material;
+                t.object = objects[s];
+                for (int j = 0; j < 3; ++j) {
+                    const Corner& idx = corner[c[j]];
+                    const float* p = &positions[3 * std::size_t(idx.v)];
+                    t.position[j] = glm::vec3(m * glm::vec4(p[0], p[1], p[2], 1.0f));
+                    if (!std::isfinite(t.position[j].x) || !std::isfinite(t.position[j].y) || !std::isfinite(t.position[j].z))
+                        throw inputError(objFile, 0, "vertex " + std::to_string(idx.v + 1) + " is not finite after the transform");
+                    t.uv[j] = idx.vt >= 0 ? glm::vec2(uvs[2 * std::size_t(idx.vt)], uvs[2 * std::size_t(idx.vt) + 1]) : glm::vec2(0.0f);
                 }
-                const int tinyMaterial = mesh.material_ids[f];
-                const std::uint32_t material = tinyMaterial >= 0 && std::size_t(tinyMaterial) < reader.sceneIndex.size()
-                                                   ? reader.sceneIndex[std::size_t(tinyMaterial)]
-                                                   : defaultMaterial;
-                // Fan triangulation: exact for triangles and convex polygons, which is what exporters write.
-                for (std::size_t k = 1; k + 1 < corners; ++k) {
-                    std::size_t c[3] = {offset, offset + k, offset + k + 1};
-                    if (mirrored) std::swap(c[1], c[2]);
-                    Triangle& t = scene_.triangles[shape.firstTriangle[f] + k - 1];
-                    t.material = material;
-                    t.object = shape.object;
-                    for (int i = 0; i < 3; ++i) {
-                        const tinyobj::index_t& idx = mesh.indices[c[i]];
-                        const tinyobj::real_t* p = &attrib.vertices[3 * std::size_t(idx.vertex_index)];
-                        t.position[i] = glm::vec3(m * glm::vec4(float(p[0]), float(p[1]), float(p[2]), 1.0f));
-                        if (!std::isfinite(t.position[i].x) || !std::isfinite(t.position[i].y) ||
-                            !std::isfinite(t.position[i].z))
-                            throw inputError(objFile, 0,
-                                             "vertex " + std::to_string(idx.vertex_index + 1) +
-                                                 " is not finite after the transform");
-                        const tinyobj::real_t* uv =
-                            idx.texcoord_index >= 0 ? &attrib.texcoords[2 * std::size_t(idx.texcoord_index)] : nullptr;
-                        t.uv[i] = uv ? glm::vec2(float(uv[0]), float(uv[1])) : glm::vec2(0.0f);
+                glm::vec3 geometric = glm::cross(t.position[1] - t.position[0], t.position[2] - t.position[0]);
+                float length = glm::length(geometric);
+                // A zero-area triangle is kept; it still gets a valid unit normal. A repeated corner is
+                // never hit; distinct collinear corners can be, by rounding (docs/hard-cases.md).
+                geometric = length > 0.0f && std::isfinite(length) ? geometric / length : glm::vec3(0.0f, 0.0f, 1.0f);
+                for (int j = 0; j < 3; ++j) {
+                    const int ni = corner[c[j]].vn;
+                    glm::vec3 n(0.0f);
+                    if (ni >= 0) {
+                        const float* v = &normals[3 * std::size_t(ni)];
+                        n = normalMatrix * glm::vec3(v[0], v[1], v[2]);
                     }
-                    glm::vec3 geometric = glm::cross(t.position[1] - t.position[0], t.position[2] - t.position[0]);
-                    float length = glm::length(geometric);
-                    // A zero-area triangle is kept; it still gets a valid unit normal. A repeated corner is
-                    // never hit; distinct collinear corners can be, by rounding (docs/hard-cases.md).
-                    geometric = length > 0.0f && std::isfinite(length) ? geometric / length : glm::vec3(0.0f, 0.0f, 1.0f);
-                    for (int i = 0; i < 3; ++i) {
-                        const int ni = mesh.indices[c[i]].normal_index;
-                        glm::vec3 n(0.0f);
-                        if (ni >= 0) {
-                            const tinyobj::real_t* v = &attrib.normals[3 * std::size_t(ni)];
-                            n = normalMatrix * glm::vec3(float(v[0]), float(v[1]), float(v[2]));
-                        }
-                        float nl = glm::length(n);
-                        t.normal[i] = nl > 0.0f && std::isfinite(nl) ? n / nl : geometric;
-                    }
+                    float nl = glm::length(n);
+                    t.normal[j] = nl > 0.0f && std::isfinite(nl) ? n / nl : geometric;
                 }
             }
-        });
-        facesBefore += mesh.num_face_vertices.size();
-    }
+        }
+    });
     if (scene_.triangles.size() == firstTriangle) throw inputError(objFile, 0, "contains no triangles");
 }
 

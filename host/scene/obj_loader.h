@@ -1,5 +1,6 @@
 // Appending Wavefront OBJ files to a Scene: triangles in world space (after an optional
 // transform), one object per OBJ shape ("o"/"g"), materials from the MTL files with textures.
+// The OBJ is parsed on every core, as tinyobjloader 2.0 parsed it on one (obj_loader.cpp).
 // Material libraries and textures are loaded once per path however many OBJ files use them.
 #pragma once
 
@@ -18,6 +19,9 @@ namespace vitrum {
 struct ObjOptions {
     std::optional<std::filesystem::path> mtlOverride;  // replaces the OBJ's own mtllib
     glm::mat4 transform{1.0f};                         // object to world; must be invertible
+    // The text is read in this many parts at once (0: one a core, of 16 MiB at least); tests
+    // split small files with it.
+    std::size_t parts = 0;
 };
 
 class ObjLoader {

@@ -75,6 +75,10 @@ Scene loadScene(const std::filesystem::path& path, const SceneLoadOptions& optio
         }
     } catch (const std::bad_alloc&) {
         throw inputError(path, 0, "not enough memory to load the scene (its files, textures and triangles)");
+    } catch (const std::system_error& e) {
+        // A thread of the OBJ loader that cannot start: no memory left for its stack.
+        if (e.code() != std::errc::resource_unavailable_try_again) throw;
+        throw inputError(path, 0, "not enough memory to load the scene (its files, textures and triangles)");
     }
     throw inputError(path, 0, "unknown scene format \"" + extension +
                                   "\": expected a .json scene, an .obj file or a glTF file (.gltf, .glb)");
