@@ -151,7 +151,8 @@ TEST_F(GltfCli, BadFilesAreRefusedNamingTheFileAndWriteNoImage) {
         std::string name, contents, message;
     };
     std::vector<Bad> bad = {
-        {"missing_bin.gltf", gltf(mesh, R"({"byteLength": 36, "uri": "tri.bin"})", view, positions), "tri.bin"},
+        {"missing_bin.gltf", gltf(mesh, R"({"byteLength": 36, "uri": "tri.bin"})", view, positions),
+         "buffers[0]: File not found : tri.bin"},
         {"component_type.gltf",
          gltf(mesh, inlineBuffer, view, R"({"bufferView": 0, "componentType": 5121, "count": 3, "type": "VEC3"})"),
          "accessors[0] (meshes[0].primitives[0].attributes.POSITION) has component type 5121; glTF 2.0 allows it FLOAT (5126)"},
