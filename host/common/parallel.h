@@ -11,6 +11,37 @@
 
 namespace vitrum {
 
+// `run(part)` for each part in [0, parts), one a thread, the calling thread taking part 0. The first
+// exception a part throws (by part) is rethrown once all have ended; a thread that cannot start
+// (no memory for its stack) throws once those started have ended.
+template <class Run>
+void onThreads(std::size_t parts, Run&& run) {
+    if (parts <= 1) {
+        if (parts == 1) run(std::size_t(0));
+        return;
+    }
+    std::vector<std::exception_ptr> failed(parts);
+    auto guarded = [&](std::size_t part) {
+        try {
+            run(part);
+        } catch (...) {
+            failed[part] = std::current_exception();
+        }
+    };
+    std::vector<std::thread> threads;
+    threads.reserve(parts - 1);
+    try {
+        for (std::size_t part = 1; part < parts; ++part) threads.emplace_back(guarded, part);
+    } catch (...) {
+        for (std::thread& t : threads) t.join();
+        throw;
+    }
+    guarded(0);
+    for (std::thread& t : threads) t.join();
+    for (const std::exception_ptr& e : failed)
+        if (e) std::rethrow_exception(e);
+}
+
 // `body(begin, end)` for chunks covering [0, count), one contiguous chunk a thread, the calling
 // thread taking the first; ranges under `minChunk` a thread run on fewer threads. The first
 // exception a chunk throws is rethrown once all have ended.
@@ -18,30 +49,7 @@ template <class Body>
 void parallelFor(std::size_t count, Body&& body, std::size_t minChunk = std::size_t(1) << 15) {
     const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
     const std::size_t chunks = std::clamp<std::size_t>(count / std::max<std::size_t>(minChunk, 1), 1, cores);
-    if (chunks == 1) {
-        body(std::size_t(0), count);
-        return;
-    }
-    std::vector<std::exception_ptr> failed(chunks);
-    auto run = [&](std::size_t chunk) {
-        try {
-            body(count * chunk / chunks, count * (chunk + 1) / chunks);
-        } catch (...) {
-            failed[chunk] = std::current_exception();
-        }
-    };
-    std::vector<std::thread> threads;
-    threads.reserve(chunks - 1);
-    try {
-        for (std::size_t chunk = 1; chunk < chunks; ++chunk) threads.emplace_back(run, chunk);
-    } catch (...) {  // a thread that cannot start (no memory for its stack): those started end first
-        for (std::thread& t : threads) t.join();
-        throw;
-    }
-    run(0);
-    for (std::thread& t : threads) t.join();
-    for (const std::exception_ptr& e : failed)
-        if (e) std::rethrow_exception(e);
+    onThreads(chunks, [&](std::size_t chunk) { body(count * chunk / chunks, count * (chunk + 1) / chunks); });
 }
 
 // std::sort(first, last, less) on `threads` threads (0: every core), in place and with no more

@@ -226,7 +226,6 @@ struct ObjPart {
     std::vector<std::uint32_t> faceEnds;              // where each face's corners end in `corners`
     std::vector<std::uint64_t> relative;  // 3 * corner + (0 v, 1 vt, 2 vn): negative indices, from the part's start
     std::vector<ObjEvent> events;
-    std::exception_ptr error;  // the first of vitrum's checks that failed
     int readerErrorLine = 0;   // the first line tinyobjloader refused (0: none), and its message
     std::string readerError;
 };
@@ -462,25 +461,11 @@ std::vector<ObjPart> readParts(const fs::path& file, const std::string& text, st
     // A progress call a megabyte of text, as when tinyobjloader read it in chunks of one.
     const std::size_t reports = (text.size() + (std::size_t(1) << 20) - 1) >> 20;
     std::vector<ObjPart> read(parts);
-    auto readPart = [&](std::size_t k) {
-        try {
-            const int linesBefore = int(std::count(text.begin(), text.begin() + std::ptrdiff_t(starts[k]), '\n'));
-            readLines(file, text, starts[k], starts[k + 1], linesBefore, read[k], k == 0 ? progress : nullptr, reports);
-        } catch (...) {
-            read[k].error = std::current_exception();
-        }
-    };
-    std::vector<std::thread> threads;
-    try {
-        for (std::size_t k = 1; k < parts; ++k) threads.emplace_back(readPart, k);
-    } catch (...) {  // a thread that cannot start (no memory for its stack): those started end first
-        for (std::thread& t : threads) t.join();
-        throw;
-    }
-    readPart(0);
-    for (std::thread& t : threads) t.join();
-    for (const ObjPart& part : read)
-        if (part.error) std::rethrow_exception(part.error);
+    // The first part's error is the file's first, as one core would find it.
+    onThreads(parts, [&](std::size_t k) {
+        const int linesBefore = int(std::count(text.begin(), text.begin() + std::ptrdiff_t(starts[k]), '\n'));
+        readLines(file, text, starts[k], starts[k + 1], linesBefore, read[k], k == 0 ? progress : nullptr, reports);
+    });
     return read;
 }
 

@@ -24,19 +24,15 @@
 #include "scene/mtl_material.h"
 #include "scene/mtl_parser.h"
 
+#include "../support/temporary_folder_test.h"
+
 namespace vitrum {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path tempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    fs::path dir = fs::temp_directory_path() / "vitrum_obj_parser_test" /
-                   (std::string(info->test_suite_name()) + "." + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+// Each test in a folder of its own (dir_).
+class ObjParser : public testing::TemporaryFolderTest {};
 
 fs::path write(const fs::path& file, const std::string& text) {
     std::ofstream(file, std::ios::binary) << text;
@@ -56,14 +52,14 @@ std::string objectOf(const Scene& scene, const Triangle& t) { return scene.objec
 
 // Negative indices count back from the statements read so far, across the parts' borders: each
 // face takes the three vertices just before it, and the one normal, in every split of the file.
-TEST(ObjParser, RelativeIndicesCountFromTheWholeFileInEveryPart) {
+TEST_F(ObjParser, RelativeIndicesCountFromTheWholeFileInEveryPart) {
     std::string text;
     for (int i = 0; i < 40; ++i) {
         text += "v " + std::to_string(i) + " 0 0\nv " + std::to_string(i) + " 1 0\nv " + std::to_string(i) + " 0 1\n";
         text += "vn 0 " + std::to_string(i + 1) + " 0\n";
         text += "f -3//-1 -2//-1 -1//-1\n";
     }
-    const fs::path obj = write(tempDir() / "relative.obj", text);
+    const fs::path obj = write(dir_ / "relative.obj", text);
     for (std::size_t parts : {1, 2, 3, 7, 40, 200}) {
         const Scene scene = loadInParts(obj, parts);
         ASSERT_EQ(scene.triangles.size(), 40u) << parts;
@@ -76,7 +72,7 @@ TEST(ObjParser, RelativeIndicesCountFromTheWholeFileInEveryPart) {
         }
     }
     // A negative index before the file's first vertex is named, however the file is split.
-    const fs::path before = write(tempDir() / "before.obj", text + "f -121 -1 -2\n");
+    const fs::path before = write(dir_ / "before.obj", text + "f -121 -1 -2\n");
     for (std::size_t parts : {1, 3}) {
         try {
             loadInParts(before, parts);
@@ -90,8 +86,8 @@ TEST(ObjParser, RelativeIndicesCountFromTheWholeFileInEveryPart) {
 // o and g begin a shape (one object each, in the file's order), usemtl changes the material of
 // the faces after it without beginning one, and a material outlives its shape; a shape without
 // a name is "shapeN", N counting tinyobjloader's shapes, an o's of lines only among them.
-TEST(ObjParser, ObjectsGroupsAndMaterialsAsTinyobjloaderMadeThem) {
-    const fs::path dir = tempDir();
+TEST_F(ObjParser, ObjectsGroupsAndMaterialsAsTinyobjloaderMadeThem) {
+    const fs::path& dir = dir_;
     write(dir / "m.mtl", "newmtl red\nshader 2\nKd 1 0 0\nnewmtl glass\nshader 4\nNi 1.5\n");
     const std::string text =
         "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
@@ -130,7 +126,7 @@ TEST(ObjParser, ObjectsGroupsAndMaterialsAsTinyobjloaderMadeThem) {
 
 // A shape that runs on over the parts' borders stays one object; a face of fewer than three
 // corners is dropped with a warning; a polygon is a fan of triangles from its first corner.
-TEST(ObjParser, AShapeSplitAcrossPartsIsOneObject) {
+TEST_F(ObjParser, AShapeSplitAcrossPartsIsOneObject) {
     std::string text = "o grid\n";
     for (int i = 0; i < 30; ++i) text += "v " + std::to_string(i) + " 0 0\nv " + std::to_string(i) + " 1 0\n";
     for (int i = 0; i + 1 < 30; ++i) {
@@ -140,7 +136,7 @@ TEST(ObjParser, AShapeSplitAcrossPartsIsOneObject) {
         if (i == 10) text += "f 1 2\n";
     }
     text += "g second\nf 1 3 4\n";
-    const fs::path dir = tempDir();
+    const fs::path& dir = dir_;
     for (std::size_t parts : {1, 2, 5, 16}) {
         const fs::path obj = dir / std::to_string(parts) / "grid.obj";
         fs::create_directories(obj.parent_path());
@@ -166,13 +162,13 @@ TEST(ObjParser, AShapeSplitAcrossPartsIsOneObject) {
 
 // A polygon of 256 corners or more is a fan of them all: tinyobjloader kept a face's corner count
 // in 8 bits, and the loader made triangles of the wrong corners after it.
-TEST(ObjParser, APolygonOfThreeHundredCornersIsOneFan) {
+TEST_F(ObjParser, APolygonOfThreeHundredCornersIsOneFan) {
     std::string text;
     for (int i = 0; i < 300; ++i) text += "v " + std::to_string(i) + " " + std::to_string(i * i) + " 0\n";  // convex
     text += "f";
     for (int i = 1; i <= 300; ++i) text += ' ' + std::to_string(i);
     text += "\nf 1 2 3\n";
-    const Scene scene = loadInParts(write(tempDir() / "polygon.obj", text), 1);
+    const Scene scene = loadInParts(write(dir_ / "polygon.obj", text), 1);
     ASSERT_EQ(scene.triangles.size(), 298u + 1u);
     for (int i = 0; i < 298; ++i) {  // corners 1, i + 2, i + 3
         const Triangle& t = scene.triangles[std::size_t(i)];
@@ -186,8 +182,8 @@ TEST(ObjParser, APolygonOfThreeHundredCornersIsOneFan) {
 // An index tinyobjloader reads as 0 (an empty part, "/2", a fourth part) is its error, with its
 // line; an error of vitrum's own checks later in the file comes first, and a library after the
 // refused line is never read.
-TEST(ObjParser, ZeroIndicesAreTinyobjloadersErrorsWithTheirLine) {
-    const fs::path dir = tempDir();
+TEST_F(ObjParser, ZeroIndicesAreTinyobjloadersErrorsWithTheirLine) {
+    const fs::path& dir = dir_;
     const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
     for (const char* face : {"f 1 0 2", "f 1 2 /3", "f 1/1/1/1 2 3", "f 1 2 3/"}) {
         const fs::path obj = write(dir / "zero.obj", vertices + "vt 0 0\nvn 0 0 1\n" + face + "\nmtllib none.mtl\n");
@@ -398,8 +394,8 @@ Reference tinyobjReference(const fs::path& obj) {
     return reference;
 }
 
-TEST(ObjParser, RandomFilesGiveTinyobjloadersTrianglesBitForBit) {
-    const fs::path dir = tempDir();
+TEST_F(ObjParser, RandomFilesGiveTinyobjloadersTrianglesBitForBit) {
+    const fs::path& dir = dir_;
     write(dir / "a.mtl", "newmtl red\nshader 2\nKd 1 0 0\nnewmtl glass\nshader 4\nNi 1.5\n");
     write(dir / "b.mtl", "newmtl water\nshader 4\nNi 1.33\nnewmtl red\nshader 2\nKd 0 1 0\n");
     std::mt19937 random(52);
