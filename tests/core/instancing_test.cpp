@@ -9,6 +9,7 @@
 #include <fstream>
 #include <random>
 #include <set>
+#include <tuple>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -173,6 +174,40 @@ TEST(Instancing, AnInstanceMovedBeyondFloatIsRefusedNamingItsEntry) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("beyond"), std::string::npos) << e.what();
     }
+}
+
+// A glTF file whose nodes share a mesh, in a JSON scene before an OBJ file in the world and one
+// named twice: the glTF's mesh is made first, yet the world's triangles end up before every mesh's
+// (putMeshesLast), and the copies are the triangles the flat load makes.
+TEST(Instancing, MeshesFromAGltfAndFromRepeatedEntriesComeAfterTheWorld) {
+    const std::string gltf = std::string(VITRUM_SOURCE_DIR) + "/tests/fuzz/corpus/gltf/instanced.gltf";
+    const fs::path file =
+        writeScene("mixed.json", R"({"gltf": ")" + gltf + R"("}, )" + entry("prism.obj") + ", " +
+                                     entry("cube.obj", R"(, "transform": {"translate": [3, 0, 0]})") + ", " +
+                                     entry("cube.obj", R"(, "transform": {"translate": [5, 0, 0]})"));
+    const Scene scene = loadScene(file);
+    ASSERT_EQ(scene.meshes.size(), 2u);  // the glTF's triangle, the cube
+    EXPECT_EQ(scene.instances.size(), 5u);
+    std::uint32_t next = worldTriangleCount(scene);
+    for (const Mesh& mesh : scene.meshes) {
+        EXPECT_EQ(mesh.first, next);
+        next += mesh.count;
+    }
+    EXPECT_EQ(next, scene.triangles.size());
+    const Scene flat = loadScene(file, {.instancing = false});
+    const Scene placed = flattened(scene);
+    ASSERT_EQ(placed.triangles.size(), flat.triangles.size());
+    // The same triangles (corners to float rounding of the transforms), each of its own object.
+    auto key = [](const Triangle& t) {
+        return std::tuple(std::lround(t.position[0].x * 1e4f), std::lround(t.position[0].y * 1e4f),
+                          std::lround(t.position[0].z * 1e4f), std::lround(t.position[1].x * 1e4f),
+                          std::lround(t.position[2].z * 1e4f));
+    };
+    std::multiset<std::tuple<long, long, long, long, long>> a, b;
+    for (const Triangle& t : placed.triangles) a.insert(key(t));
+    for (const Triangle& t : flat.triangles) b.insert(key(t));
+    EXPECT_EQ(a, b);
+    EXPECT_EQ(scene.objectNames.size(), flat.objectNames.size());
 }
 
 }  // namespace
