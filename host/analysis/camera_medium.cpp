@@ -31,11 +31,11 @@ double windingNumber(const std::vector<const Triangle*>& triangles, const glm::d
     return solidAngle / (4.0 * std::numbers::pi);
 }
 
-std::vector<std::uint32_t> cameraMedia(const Scene& scene, const std::set<std::uint32_t>& open,
-                                       const glm::dvec3& point) {
+std::vector<std::uint32_t> cameraMedia(std::span<const Triangle> triangles, const std::vector<Material>& materials,
+                                       const std::set<std::uint32_t>& open, const glm::dvec3& point) {
     std::map<std::uint32_t, std::vector<const Triangle*>> glassTriangles;
-    for (const Triangle& t : scene.triangles)
-        if (scene.materials[t.material].model == MaterialModel::Glass && !open.count(t.object))
+    for (const Triangle& t : triangles)
+        if (materials[t.material].model == MaterialModel::Glass && !open.count(t.object))
             glassTriangles[t.object].push_back(&t);
     struct Around {
         double volume;

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <set>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -22,11 +23,12 @@
 
 namespace vitrum {
 
-// The media around `point` (the camera, or where primary rays start off the surface it lies on,
-// camera_surface.h): object indices (Triangle::object), innermost last; empty: air. `open` are
-// the glass objects that are not closed meshes (openGlassObjects in scene_features.h).
-std::vector<std::uint32_t> cameraMedia(const Scene& scene, const std::set<std::uint32_t>& open,
-                                       const glm::dvec3& point);
+// The media of `triangles` (in the world; `materials` the scene's) around `point` (the camera,
+// or where primary rays start off the surface it lies on, camera_surface.h): object indices
+// (Triangle::object), innermost last; empty: air. `open` are the glass objects that are not
+// closed meshes (openGlassObjects in scene_features.h).
+std::vector<std::uint32_t> cameraMedia(std::span<const Triangle> triangles, const std::vector<Material>& materials,
+                                       const std::set<std::uint32_t>& open, const glm::dvec3& point);
 
 // The winding number of the triangles at `point` (the sum of their signed solid angles over 4 pi).
 double windingNumber(const std::vector<const Triangle*>& triangles, const glm::dvec3& point);

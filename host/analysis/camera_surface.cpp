@@ -28,14 +28,13 @@ glm::dvec3 closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, cons
 
 }  // namespace
 
-CameraSurface cameraSurface(const Scene& scene, const RayOffsetScale& scale) {
-    const glm::vec3 from = scene.camera.from;
+CameraSurface cameraSurface(std::span<const Triangle> triangles, const glm::vec3& from, const RayOffsetScale& scale) {
     const glm::dvec3 camera(from);
     // No offset along a unit normal is longer than this: a triangle whose box is farther from the
     // camera is not tested further (a scene of a million triangles is passed over in milliseconds).
     const double reach = glm::length(glm::dvec3(offsetRayOrigin(from, glm::vec3(1.0f), scale)) - camera);
     CameraSurface surface;
-    for (const Triangle& t : scene.triangles) {
+    for (const Triangle& t : triangles) {
         const glm::dvec3 a(t.position[0]), b(t.position[1]), c(t.position[2]);
         const glm::dvec3 lo = glm::min(a, glm::min(b, c)) - reach, hi = glm::max(a, glm::max(b, c)) + reach;
         if (glm::any(glm::lessThan(camera, lo)) || glm::any(glm::greaterThan(camera, hi))) continue;

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include <glm/glm.hpp>
 
@@ -28,8 +29,9 @@ struct CameraSurface {
     bool otherPlanes = false;
 };
 
-// `scale`: the scene's ray offsets (rayOffsetScale), as the renderers use them.
-CameraSurface cameraSurface(const Scene& scene, const RayOffsetScale& scale);
+// Among `triangles` (in the world), for a camera at `from`; `scale`: the scene's ray offsets
+// (rayOffsetScale), as the renderers use them.
+CameraSurface cameraSurface(std::span<const Triangle> triangles, const glm::vec3& from, const RayOffsetScale& scale);
 
 // Where a primary ray of direction `d` starts: off the camera's surface (`normal`, from
 // CameraSurface) on the side `d` goes to, along +normal where d is parallel to it; `from` itself

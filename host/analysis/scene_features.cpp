@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <set>
+#include <span>
 #include <tuple>
 #include <vector>
 
@@ -129,13 +130,10 @@ std::set<std::uint32_t> openObjects(const Scene& scene, std::uint32_t begin, std
 template <class Counts>
 std::set<std::uint32_t> openObjects(const Scene& scene, Counts counts) {
     std::set<std::uint32_t> open = openObjects(scene, 0, worldTriangleCount(scene), counts);
-    for (std::uint32_t m = 0; m < scene.meshes.size(); ++m) {
-        const Mesh& mesh = scene.meshes[m];
-        const std::set<std::uint32_t> local = openObjects(scene, mesh.first, mesh.first + mesh.count, counts);
-        for (const Instance& instance : scene.instances)
-            if (instance.mesh == m)
-                for (std::uint32_t object : local) open.insert(instance.firstObject + object);
-    }
+    std::vector<std::set<std::uint32_t>> meshes;
+    for (const Mesh& mesh : scene.meshes) meshes.push_back(openObjects(scene, mesh.first, mesh.first + mesh.count, counts));
+    for (const Instance& instance : scene.instances)
+        for (std::uint32_t object : meshes[instance.mesh]) open.insert(instance.firstObject + object);
     return open;
 }
 
@@ -234,24 +232,30 @@ SceneFeatures analyseScene(const Scene& scene) {
     f.openGlassObjects = std::uint32_t(open.size());
     // A primary ray's media are those where it starts: off the camera's surface on its side.
     const RayOffsetScale offsets = rayOffsetScale(scene);
-    // Where the scene has instances, those whose boxes hold the camera, moved to the world, with
-    // the world's triangles: all that the camera can lie on or inside.
+    // What the camera can lie on or inside: the world's triangles and, where the scene has
+    // instances, the copies whose boxes hold the camera, moved to the world (copied only then).
+    std::span<const Triangle> cameraTriangles = std::span(scene.triangles).first(worldTriangleCount(scene));
+    std::vector<Triangle> aroundCamera;
     const std::vector<FloatBox> meshes = meshBoxes(scene);
-    const Scene nearCamera = instanced ? flattened(scene, [&](const Instance& instance) {
+    const auto holdsCamera = [&](const Instance& instance) {
         const FloatBox box = instanceBox(instance, meshes[instance.mesh]);
         return glm::all(glm::lessThanEqual(box.min - glm::vec3(float(margin)), scene.camera.from)) &&
                glm::all(glm::lessThanEqual(scene.camera.from, box.max + glm::vec3(float(margin))));
-    }) : Scene{};
-    const Scene& cameraScene = instanced ? nearCamera : scene;
-    f.cameraSurface = cameraSurface(cameraScene, offsets);
+    };
+    if (std::any_of(scene.instances.begin(), scene.instances.end(), holdsCamera)) {
+        aroundCamera = placedTriangles(scene, holdsCamera);
+        cameraTriangles = aroundCamera;
+    }
+    f.cameraSurface = cameraSurface(cameraTriangles, scene.camera.from, offsets);
     const glm::vec3 from = scene.camera.from;
     const glm::vec3 normal = f.cameraSurface.normal;
     // Where primary rays start: off the surface on each side of it, or at the camera.
     std::vector<glm::dvec3> primaryStarts = {glm::dvec3(offsetRayOrigin(from, normal, offsets))};
     if (f.cameraSurface.triangles != 0) primaryStarts.push_back(glm::dvec3(offsetRayOrigin(from, -normal, offsets)));
-    f.cameraMedia = cameraMedia(cameraScene, open, primaryStarts.front());
-    f.cameraMediaBehind =
-        primaryStarts.size() == 1 ? f.cameraMedia : cameraMedia(cameraScene, open, primaryStarts.back());
+    f.cameraMedia = cameraMedia(cameraTriangles, scene.materials, open, primaryStarts.front());
+    f.cameraMediaBehind = primaryStarts.size() == 1
+                              ? f.cameraMedia
+                              : cameraMedia(cameraTriangles, scene.materials, open, primaryStarts.back());
     f.coincidentOpaquePossible =
         instanced ? opaque
                   : findCloseOpaqueTriangles(scene, margin, opaqueObjectsMetFromBehind(scene, primaryStarts)).found;

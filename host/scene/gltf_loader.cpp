@@ -215,7 +215,7 @@ public:
             if (scene_.triangles.size() == meshFirst) continue;
             std::vector<std::string> names;
             const std::uint32_t mesh = makeMesh(scene_, meshFirst, meshObject, names);
-            const FloatBox box = meshBoxes(scene_)[mesh];
+            const FloatBox box = meshBox(scene_, scene_.meshes[mesh]);
             for (const auto& [node, world] : nodes) {
                 Instance instance;
                 try {

@@ -60,17 +60,19 @@ void putMeshesLast(Scene& scene) {
     scene.triangles = std::move(ordered);
 }
 
+FloatBox meshBox(const Scene& scene, const Mesh& mesh) {
+    FloatBox box{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
+    for (std::uint32_t i = mesh.first; i < mesh.first + mesh.count; ++i)
+        for (const glm::vec3& p : scene.triangles[i].position) {
+            box.min = glm::min(box.min, p);
+            box.max = glm::max(box.max, p);
+        }
+    return box;
+}
+
 std::vector<FloatBox> meshBoxes(const Scene& scene) {
     std::vector<FloatBox> boxes;
-    for (const Mesh& mesh : scene.meshes) {
-        FloatBox box{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
-        for (std::uint32_t i = mesh.first; i < mesh.first + mesh.count; ++i)
-            for (const glm::vec3& p : scene.triangles[i].position) {
-                box.min = glm::min(box.min, p);
-                box.max = glm::max(box.max, p);
-            }
-        boxes.push_back(box);
-    }
+    for (const Mesh& mesh : scene.meshes) boxes.push_back(meshBox(scene, mesh));
     return boxes;
 }
 
@@ -113,14 +115,15 @@ FloatBox worldBox(const Scene& scene) {
 }
 
 Scene flattened(const Scene& scene) {
-    return flattened(scene, [](const Instance&) { return true; });
-}
-
-Scene flattened(const Scene& scene, const std::function<bool(const Instance&)>& keep) {
     Scene flat = scene;
-    flat.triangles.resize(worldTriangleCount(scene));
+    flat.triangles = placedTriangles(scene, [](const Instance&) { return true; });
     flat.meshes.clear();
     flat.instances.clear();
+    return flat;
+}
+
+std::vector<Triangle> placedTriangles(const Scene& scene, const std::function<bool(const Instance&)>& keep) {
+    std::vector<Triangle> placed(scene.triangles.begin(), scene.triangles.begin() + worldTriangleCount(scene));
     for (const Instance& instance : scene.instances) {
         if (!keep(instance)) continue;
         const Mesh& mesh = scene.meshes[instance.mesh];
@@ -134,14 +137,13 @@ Scene flattened(const Scene& scene, const std::function<bool(const Instance&)>& 
             for (int k = 0; k < 3; ++k) {
                 const int from = mirrored && k > 0 ? 3 - k : k;
                 w.position[k] = glm::vec3(m * glm::vec4(t.position[from], 1.0f));
-                const glm::vec3 n = normalMatrix * t.normal[from];
-                w.normal[k] = glm::normalize(n);
+                w.normal[k] = glm::normalize(normalMatrix * t.normal[from]);
                 w.uv[k] = t.uv[from];
             }
-            flat.triangles.push_back(w);
+            placed.push_back(w);
         }
     }
-    return flat;
+    return placed;
 }
 
 }  // namespace vitrum

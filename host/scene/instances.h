@@ -31,7 +31,8 @@ struct FloatBox {
     glm::vec3 max{0.0f};
 };
 
-// Each mesh's box in its own space.
+// A mesh's box in its own space, and each mesh's.
+FloatBox meshBox(const Scene& scene, const Mesh& mesh);
 std::vector<FloatBox> meshBoxes(const Scene& scene);
 
 // The world box of an instance whose mesh has box `meshBox`: the box of its eight corners moved
@@ -47,7 +48,8 @@ FloatBox worldBox(const Scene& scene);
 // mesh with the instance's transform (each instance's objects its own): what instancing saves,
 // and what tests compare an instanced render with.
 Scene flattened(const Scene& scene);
-// The same with only the instances for which keep(instance) is true.
-Scene flattened(const Scene& scene, const std::function<bool(const Instance&)>& keep);
+// The world's triangles, then those of each instance for which keep(instance) is true, moved to
+// the world as flattened() moves them.
+std::vector<Triangle> placedTriangles(const Scene& scene, const std::function<bool(const Instance&)>& keep);
 
 }  // namespace vitrum

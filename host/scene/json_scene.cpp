@@ -108,7 +108,7 @@ public:
             loader.load(specs[uses.front()].file, {.mtlOverride = specs[uses.front()].options.mtlOverride});
             std::vector<std::string> names;
             const std::uint32_t mesh = makeMesh(scene, firstTriangle, firstObject, names);
-            const FloatBox meshBox = meshBoxes(scene)[mesh];
+            const FloatBox box = meshBox(scene, scene.meshes[mesh]);
             for (std::size_t i : uses) {
                 const std::string at = "/objects/" + std::to_string(i) + "/transform";
                 Instance instance;
@@ -117,8 +117,8 @@ public:
                 } catch (const std::invalid_argument& e) {
                     fail(at, e.what());
                 }
-                const FloatBox box = instanceBox(instance, meshBox);
-                const glm::vec3 size = box.max - box.min;
+                const FloatBox placed = instanceBox(instance, box);
+                const glm::vec3 size = placed.max - placed.min;
                 if (!(std::isfinite(size.x) && std::isfinite(size.y) && std::isfinite(size.z)))
                     fail(at, "the transform moves the object's vertices beyond the range of float");
                 scene.instances.push_back(instance);
