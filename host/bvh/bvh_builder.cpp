@@ -430,16 +430,17 @@ Bvh buildSceneBvh(const Scene& scene, const std::function<void(double)>& progres
         node.boundsMin.w = std::bit_cast<float>(bvh.triangleOrder[std::bit_cast<std::uint32_t>(node.boundsMin.w)]);
         node.boundsMax.w = std::bit_cast<float>(0u);  // count 0: an instance
     }
-    bvh.stats.maxDepth += 1;  // with the mesh trees' below
     std::vector<std::uint32_t> roots;
     for (std::size_t t = 0; t < trees.size(); ++t) {
         roots.push_back(appendTree(bvh.nodes, trees[t], firsts[t]));
         bvh.stats.leafCount += trees[t].stats.leafCount;
         bvh.stats.maxLeafTriangles = std::max(bvh.stats.maxLeafTriangles, trees[t].stats.maxLeafTriangles);
     }
+    // The depth through a leaf of the top level into the deepest tree below; the SAH cost stays
+    // the top level's.
     std::uint32_t deepest = 0;
     for (const Bvh& tree : trees) deepest = std::max(deepest, tree.stats.maxDepth);
-    bvh.stats.maxDepth += deepest;
+    bvh.stats.maxDepth += 1 + deepest;
     bvh.stats.nodeCount = std::uint32_t(bvh.nodes.size());
     bvh.triangleOrder.assign(scene.triangles.size(), 0);
     for (std::size_t t = 0; t < trees.size(); ++t)

@@ -82,6 +82,9 @@ public:
           coincidentOpaquePossible_(features.coincidentOpaquePossible),
           minWeight_(Real(scene.settings.minWeight)),
           offsetScale_(rayOffsetScale(scene)) {
+        // Another traversal knows the triangles, not vitrum's instances (RayIntersector).
+        if (intersector_ && !bvh.instances.empty())
+            throw std::invalid_argument("a RayIntersector traces scenes without instances only");
         // Each object's medium's Cauchy B (0 without dispersion), in float as the GPU gets it;
         // the wavelength samples only where some medium disperses.
         for (std::uint32_t material : mediumMaterials_) {
