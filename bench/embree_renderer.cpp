@@ -196,7 +196,9 @@ int run(int argc, char** argv) {
                                  "[--stats FILE.json]");
     const auto start = Clock::now();
     auto phase = Clock::now();
-    Scene scene = fs::path(scenePath).extension() == ".obj" ? loadObjPlainly(scenePath) : loadScene(scenePath);
+    // Every copy of a repeated mesh in the world: Embree's scene is the triangle list.
+    Scene scene = fs::path(scenePath).extension() == ".obj" ? loadObjPlainly(scenePath)
+                                                             : loadScene(scenePath, SceneLoadOptions{.instancing = false});
     if (width) scene.camera.width = width;
     if (height) scene.camera.height = height;
     const double load = secondsSince(phase);

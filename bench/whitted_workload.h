@@ -29,7 +29,8 @@ inline constexpr const char* kWhittedScenes[] = {
 };
 
 // One scene of the workload: the scene at the workload's size and depth (its own spp, 1 for all
-// of them), its BVH, the triangles in BVH order as the GPU reads them.
+// of them), its BVH, the triangles in BVH order as the GPU reads them. Every copy of a repeated
+// mesh is stored (`--no-instancing`): Embree and the driver's ray queries trace the triangle list.
 struct WhittedScene {
     Scene scene;
     Bvh bvh;
@@ -38,7 +39,7 @@ struct WhittedScene {
 
 inline WhittedScene loadWhittedScene(const std::filesystem::path& file) {
     WhittedScene w;
-    w.scene = loadScene(file);
+    w.scene = loadScene(file, SceneLoadOptions{.instancing = false});
     w.scene.camera.width = kWhittedWidth;
     w.scene.camera.height = kWhittedHeight;
     w.scene.settings.maxDepth = kWhittedMaxDepth;
