@@ -1,8 +1,20 @@
 #include "common/huge_pages.h"
 
+#include <malloc.h>
 #include <sys/mman.h>
+#include <unistd.h>
 
 #include <cstdint>
+#include <cstdlib>
+
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer)
+#define VITRUM_SANITIZED_ALLOCATOR 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define VITRUM_SANITIZED_ALLOCATOR 1
+#endif
 
 namespace vitrum {
 
@@ -12,6 +24,27 @@ void adviseHugePages(void* block, std::size_t bytes) {
     const auto begin = (reinterpret_cast<std::uintptr_t>(block) + kHugePage - 1) & ~(kHugePage - 1);
     const auto end = (reinterpret_cast<std::uintptr_t>(block) + bytes) & ~(kHugePage - 1);
     if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+}
+
+AdvisedRange useHugePagesForTheHeap() {
+#ifdef VITRUM_SANITIZED_ALLOCATOR
+    return {};
+#else
+    // Any mallopt call stops glibc from raising its mmap threshold as blocks are freed: fixed at
+    // the ceiling it would rise to, the blocks of 128 KiB to 32 MiB that a render allocates and
+    // frees again (Mesa's device memory among them) come from the advised heap, not from fresh
+    // mappings each time.
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TOP_PAD, int(kHugePageHeapBytes));
+    void* grow = std::malloc(std::size_t(1) << 20);  // below the threshold: the heap grows by the pad
+    if (!grow) return {};
+    const auto from = reinterpret_cast<std::uintptr_t>(grow);
+    const auto top = reinterpret_cast<std::uintptr_t>(sbrk(0));
+    const AdvisedRange range = top > from ? AdvisedRange{grow, top - from} : AdvisedRange{};
+    adviseHugePages(range.begin, range.bytes);
+    std::free(grow);
+    return range;
+#endif
 }
 
 }  // namespace vitrum

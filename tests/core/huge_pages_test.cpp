@@ -1,0 +1,76 @@
+// The heap in huge pages (common/huge_pages.h): the advice reaches the kernel's map of the
+// process, and the blocks a render allocates and frees stay on that heap.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "common/huge_pages.h"
+
+namespace vitrum {
+namespace {
+
+struct Mapping {
+    std::uintptr_t begin = 0, end = 0;
+    std::string name;
+    bool hugePages = false;  // VmFlags "hg": advised MADV_HUGEPAGE
+};
+
+// The process's mappings from /proc/self/smaps (proc(5)).
+std::vector<Mapping> mappings() {
+    std::vector<Mapping> all;
+    std::ifstream smaps("/proc/self/smaps");
+    for (std::string line; std::getline(smaps, line);) {
+        std::istringstream fields(line);
+        std::string first;
+        fields >> first;
+        if (first == "VmFlags:") {
+            for (std::string flag; fields >> flag;)
+                if (flag == "hg") all.back().hugePages = true;
+        } else if (const auto dash = first.find('-'); dash != std::string::npos && first.back() != ':') {
+            Mapping m;
+            m.begin = std::stoull(first.substr(0, dash), nullptr, 16);
+            m.end = std::stoull(first.substr(dash + 1), nullptr, 16);
+            std::string permissions, offset, device, inode;
+            fields >> permissions >> offset >> device >> inode >> m.name;
+            all.push_back(m);
+        }
+    }
+    return all;
+}
+
+TEST(HugePages, TheHeapGrowsInHugePagesAndKeepsARendersBlocks) {
+    if (!std::filesystem::exists("/sys/kernel/mm/transparent_hugepage/enabled"))
+        GTEST_SKIP() << "this kernel has no transparent huge pages";
+    const AdvisedRange range = useHugePagesForTheHeap();
+#if defined(__SANITIZE_ADDRESS__)
+    EXPECT_EQ(range.bytes, 0u) << "a sanitizer's allocator is left alone";
+    return;
+#endif
+    ASSERT_GE(range.bytes, kHugePageHeapBytes);
+    // Every whole 2 MiB page of the range is in a mapping advised for huge pages.
+    const std::uintptr_t huge = std::uintptr_t(2) << 20;
+    const auto begin = (reinterpret_cast<std::uintptr_t>(range.begin) + huge - 1) & ~(huge - 1);
+    const auto end = (reinterpret_cast<std::uintptr_t>(range.begin) + range.bytes) & ~(huge - 1);
+    std::uintptr_t advised = 0;
+    std::uintptr_t heapBegin = 0, heapEnd = 0;
+    for (const Mapping& m : mappings()) {
+        if (m.hugePages && m.end > begin && m.begin < end) advised += std::min(m.end, end) - std::max(m.begin, begin);
+        if (m.name == "[heap]") heapBegin = std::min(heapBegin ? heapBegin : m.begin, m.begin), heapEnd = std::max(heapEnd, m.end);
+    }
+    EXPECT_EQ(advised, end - begin);
+    // A block of 8 MiB, as Mesa allocates a tile's buffers, comes from the heap, not from a mapping
+    // of its own (which glibc makes above its mmap threshold, at first 128 KiB).
+    void* block = std::malloc(std::size_t(8) << 20);
+    ASSERT_NE(block, nullptr);
+    const auto at = reinterpret_cast<std::uintptr_t>(block);
+    EXPECT_TRUE(at >= heapBegin && at < heapEnd) << "the block is not on the heap";
+    std::free(block);
+}
+
+}  // namespace
+}  // namespace vitrum
