@@ -202,7 +202,7 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
         // branches on the lanes' mask for each lane of a private-array store, and stored in every
         // lane those branches always go the same way (docs/gpu-design.md, "The node loop in every
         // lane").
-        bool inNodes = !over && cursor >= leafEnd;
+        bool inNodes = !over && cursor >= leafEnd && !(kInstancing && instanceEntry(current));
         uint nodeSteps = 0u;  // the group's
         if (groupAny(inNodes) && steps < budget) do {
             nodeSteps += 1u;
@@ -212,35 +212,13 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
                 counters.loopSteps += 1u;
                 if ((current & kLeafEntryFlag) == 0u)
                     visitInteriorNode(current, top, over, farEntry, direction, boxRay, tMin, tMax + reach);
-                // An instance's entry moves the ray into its mesh's space, below an entry that
-                // moves it back when it comes off the stack (gpu_types.h, "Instances"). That
-                // entry goes where the iteration's store goes when the two are one slot.
-                if (kInstancing && !over && instanceEntry(current)) {
-                    bool leaving = current == kLeaveInstanceEntry;
-                    instance = leaving ? kNoInstance : ((current & ~kLeafEntryFlag) >> 4) - 1u;
-                    current = kNoEntry;
-                    origin = st.traversal.origin;
-                    direction = st.traversal.direction;
-                    firstObject = 0u;
-                    if (!leaving && top + 2u > kTraversalStackSize) {
-                        counters.traversalStackOverflows += 1u;  // the instance is passed by, never silently
-                        instance = kNoInstance;
-                    } else if (!leaving) {
-                        GpuInstance entered = instanceNumbered(instance);
-                        origin = pointByRows(entered.toObject0, entered.toObject1, entered.toObject2, origin);
-                        direction = vectorByRows(entered.toObject0, entered.toObject1, entered.toObject2, direction);
-                        firstObject = entered.info.z;
-                        gStack[top] = kLeaveInstanceEntry;
-                        if (top == slot) farEntry = kLeaveInstanceEntry;
-                        top += 1u;
-                        current = entered.info.y;
-                    }
-                    boxRay = makeBoxRay(origin, direction);
-                    triangleRay = makeTriangleRay(origin, direction);
-                    if (current == kNoEntry) inNodes = false;
-                }
+                // An instance's entry (entering a copy or leaving one) ends the lane's node loop,
+                // and the code after the loop moves the ray: in the loop, its texel reads and the
+                // rays' set-up would run, masked, in every iteration (docs/gpu-design.md,
+                // "Instances crossed outside the node loop").
+                if (kInstancing && !over && instanceEntry(current)) inNodes = false;
                 // A leaf, taken off the stack or just entered, is taken in the same iteration.
-                if (!over && current != kNoEntry && (current & kLeafEntryFlag) != 0u) {
+                else if (!over && current != kNoEntry && (current & kLeafEntryFlag) != 0u) {
                     cursor = (current & ~kLeafEntryFlag) >> 4;
                     leafEnd = cursor + (current & 15u);
                     current = kNoEntry;
@@ -251,6 +229,37 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
             gStack[slot] = farEntry;
         } while (groupAny(inNodes) && steps + nodeSteps < budget);
         steps += max(nodeSteps, 1u);  // a loop no lane enters runs its body once, masked
+        // An instance's entry moves the ray into its mesh's space, below an entry that moves it
+        // back when it comes off the stack (gpu_types.h, "Instances"); the mesh's root is taken
+        // next, at once where it is a leaf. Not bound by the budget, so that a suspended
+        // traversal never holds an instance's entry.
+        if (kInstancing && !over && instanceEntry(current)) {
+            bool leaving = current == kLeaveInstanceEntry;
+            instance = leaving ? kNoInstance : ((current & ~kLeafEntryFlag) >> 4) - 1u;
+            current = kNoEntry;
+            origin = st.traversal.origin;
+            direction = st.traversal.direction;
+            firstObject = 0u;
+            if (!leaving && top + 2u > kTraversalStackSize) {
+                counters.traversalStackOverflows += 1u;  // the instance is passed by, never silently
+                instance = kNoInstance;
+            } else if (!leaving) {
+                GpuInstance entered = instanceNumbered(instance);
+                origin = pointByRows(entered.toObject0, entered.toObject1, entered.toObject2, origin);
+                direction = vectorByRows(entered.toObject0, entered.toObject1, entered.toObject2, direction);
+                firstObject = entered.info.z;
+                gStack[top] = kLeaveInstanceEntry;
+                top += 1u;
+                current = entered.info.y;
+                if ((current & kLeafEntryFlag) != 0u) {
+                    cursor = (current & ~kLeafEntryFlag) >> 4;
+                    leafEnd = cursor + (current & 15u);
+                    current = kNoEntry;
+                }
+            }
+            boxRay = makeBoxRay(origin, direction);
+            triangleRay = makeTriangleRay(origin, direction);
+        }
         uint triangleSteps = 0u;
         if (!over && cursor < leafEnd && steps < budget) do {
             triangleSteps += 1u;

@@ -183,7 +183,7 @@ double sceneDiagonal(const std::vector<Triangle>& triangles) {
     return triangles.empty() ? 0.0 : glm::length(box.max - box.min);
 }
 
-SceneFeatures analyseScene(const Scene& scene) {
+SceneFeatures analyseScene(const Scene& scene, std::size_t flatAnalysisTriangles) {
     SceneFeatures f;
     for (const Triangle& t : scene.triangles) f.materialModels |= 1u << std::uint32_t(scene.materials[t.material].model);
     std::set<std::uint32_t> used;
@@ -222,12 +222,21 @@ SceneFeatures analyseScene(const Scene& scene) {
     const std::uint32_t mostOverlaps = overlaps.empty() ? 0 : *std::max_element(overlaps.begin(), overlaps.end());
     // Overlapping boxes say that two objects may touch or one lie in the other; only the
     // triangles tell which (a bubble in a block is nested, never touching).
-    // With instances the triangles are not compared (an instance's are its mesh's, placed): what
-    // the boxes allow is taken as found, which costs probes, never images.
-    const bool instanced = !scene.instances.empty();
+    // An instanced scene's triangles are compared as placed in the world where they are few
+    // enough (a scene of triangles and materials alone); beyond that, what the boxes allow is
+    // taken as found, which costs probes, never images.
+    std::size_t placedCount = worldTriangleCount(scene);
+    for (const Instance& instance : scene.instances) placedCount += scene.meshes[instance.mesh].count;
+    Scene placed;
+    const bool byBoxes = !scene.instances.empty() && placedCount > flatAnalysisTriangles;
+    if (!scene.instances.empty() && !byBoxes) {
+        placed.materials = scene.materials;
+        placed.triangles = placedTriangles(scene, [](const Instance&) { return true; });
+    }
+    const Scene& compared = scene.instances.empty() || byBoxes ? scene : placed;
     const bool opaque = (f.materialModels & ~(1u << std::uint32_t(MaterialModel::Glass))) != 0;
-    f.touchingMediaPossible = mostOverlaps > 0 && (instanced || findCloseGlassTriangles(scene, margin).found);
-    f.opaqueContactPossible = f.glass && (instanced ? opaque : findGlassNearOpaque(scene, margin).found);
+    f.touchingMediaPossible = mostOverlaps > 0 && (byBoxes || findCloseGlassTriangles(compared, margin).found);
+    f.opaqueContactPossible = f.glass && (byBoxes ? opaque : findGlassNearOpaque(compared, margin).found);
     const std::set<std::uint32_t> open = openGlassObjects(scene);
     f.openGlassObjects = std::uint32_t(open.size());
     // A primary ray's media are those where it starts: off the camera's surface on its side.
@@ -257,8 +266,8 @@ SceneFeatures analyseScene(const Scene& scene) {
                               ? f.cameraMedia
                               : cameraMedia(cameraTriangles, scene.materials, open, primaryStarts.back());
     f.coincidentOpaquePossible =
-        instanced ? opaque
-                  : findCloseOpaqueTriangles(scene, margin, opaqueObjectsMetFromBehind(scene, primaryStarts)).found;
+        byBoxes ? opaque
+                : findCloseOpaqueTriangles(compared, margin, opaqueObjectsMetFromBehind(compared, primaryStarts)).found;
     if (f.cameraSurface.otherPlanes)
         warn(
             "the camera lies where surfaces meet at an angle (an edge or a corner): primary rays start off one "

@@ -84,7 +84,14 @@ struct SceneFeatures {
     std::vector<std::string> describe() const;  // one line a feature, for `vitrum info`
 };
 
-SceneFeatures analyseScene(const Scene& scene);
+// An instanced scene whose copies, placed in the world, make at most this many triangles is
+// examined triangle by triangle, as its flattened scene is (a temporary copy of the placed
+// triangles, about 100 bytes each); a larger one by its copies' boxes, which finds every surface
+// that may touch another and more (docs/gpu-design.md, "Instances crossed outside the node loop").
+inline constexpr std::size_t kFlatAnalysisTriangles = 1'000'000;
+
+// `flatAnalysisTriangles`: kFlatAnalysisTriangles, but for the tests of both ways.
+SceneFeatures analyseScene(const Scene& scene, std::size_t flatAnalysisTriangles = kFlatAnalysisTriangles);
 
 // The glass objects whose glass triangles are not a closed, consistently wound mesh: some
 // directed edge does not appear exactly once with its reverse exactly once.

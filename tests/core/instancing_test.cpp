@@ -98,20 +98,31 @@ TEST(Instancing, ASingularTransformIsRefused) {
     EXPECT_EQ(glm::vec3(instance.worldToObject * glm::vec4(1.0f, 2.0f, 3.0f, 1.0f)), glm::vec3(0.0f));
 }
 
-// The analysis finds for an instanced scene what it finds for the flattened one, or more where it
-// goes by boxes (never less: that would cost images).
+// The analysis finds for a small instanced scene what it finds for the flattened one (it compares
+// the placed triangles), and by the copies' boxes, beyond kFlatAnalysisTriangles placed triangles,
+// as much or more (never less: that would cost images).
 TEST(Instancing, TheAnalysisOfAnInstancedSceneCoversItsFlattenedOnes) {
     Scene scene = instancedScene();
     const SceneFeatures instanced = analyseScene(scene);
+    const SceneFeatures byBoxes = analyseScene(scene, 0);
     const SceneFeatures flat = analyseScene(flattened(scene));
     EXPECT_EQ(instanced.glassObjects, 4u);
     EXPECT_EQ(instanced.glassObjects, flat.glassObjects);
     EXPECT_EQ(instanced.openGlassObjects, 0u);
     EXPECT_EQ(instanced.materialModels, flat.materialModels);
     EXPECT_GE(instanced.mediumStackDepth, flat.mediumStackDepth);
-    EXPECT_TRUE(instanced.opaqueContactPossible || !flat.opaqueContactPossible);
-    EXPECT_TRUE(instanced.coincidentOpaquePossible || !flat.coincidentOpaquePossible);
-    EXPECT_TRUE(instanced.touchingMediaPossible || !flat.touchingMediaPossible);
+    for (const SceneFeatures* f : {&instanced, &byBoxes}) {
+        EXPECT_TRUE(f->opaqueContactPossible || !flat.opaqueContactPossible);
+        EXPECT_TRUE(f->coincidentOpaquePossible || !flat.coincidentOpaquePossible);
+        EXPECT_TRUE(f->touchingMediaPossible || !flat.touchingMediaPossible);
+    }
+    EXPECT_EQ(instanced.opaqueContactPossible, flat.opaqueContactPossible);
+    EXPECT_EQ(instanced.coincidentOpaquePossible, flat.coincidentOpaquePossible);
+    EXPECT_EQ(instanced.touchingMediaPossible, flat.touchingMediaPossible);
+    // This scene's floor is opaque and touches no copy's surface from behind: the boxes take
+    // coincident opaque surfaces as possible, the triangles do not.
+    EXPECT_TRUE(byBoxes.coincidentOpaquePossible);
+    EXPECT_FALSE(flat.coincidentOpaquePossible);
     // The touching distance goes by the instances' boxes, a little wider than their triangles'.
     EXPECT_NEAR(instanced.touchingDistance, flat.touchingDistance, 1e-3 * flat.touchingDistance);
     // A camera inside the stretched box's copy is in its medium (object 2: floor, box moved, this).
