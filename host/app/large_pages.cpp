@@ -7,15 +7,6 @@
 
 #include "common/huge_pages.h"
 
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer)
-#define VITRUM_SANITIZED_ALLOCATOR 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__)
-#define VITRUM_SANITIZED_ALLOCATOR 1
-#endif
-
 #ifndef VITRUM_SANITIZED_ALLOCATOR
 // A replacement of the global allocation function ([new.delete.single]); libstdc++'s operator
 // delete (free), and its array and nothrow forms of new, which call this one, stay as they are.

@@ -7,15 +7,6 @@
 #include <cstdint>
 #include <cstdlib>
 
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer)
-#define VITRUM_SANITIZED_ALLOCATOR 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__)
-#define VITRUM_SANITIZED_ALLOCATOR 1
-#endif
-
 namespace vitrum {
 
 void adviseHugePages(void* block, std::size_t bytes) {

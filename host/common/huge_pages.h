@@ -7,6 +7,16 @@
 
 #include <cstddef>
 
+// Defined where a sanitizer replaces malloc: its allocator is left as it is.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer)
+#define VITRUM_SANITIZED_ALLOCATOR 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define VITRUM_SANITIZED_ALLOCATOR 1
+#endif
+
 namespace vitrum {
 
 // Blocks smaller than this are left alone: they hold at most one whole 2 MiB huge page.

@@ -47,7 +47,7 @@ TEST(HugePages, TheHeapGrowsInHugePagesAndKeepsARendersBlocks) {
     if (!std::filesystem::exists("/sys/kernel/mm/transparent_hugepage/enabled"))
         GTEST_SKIP() << "this kernel has no transparent huge pages";
     const AdvisedRange range = useHugePagesForTheHeap();
-#if defined(__SANITIZE_ADDRESS__)
+#ifdef VITRUM_SANITIZED_ALLOCATOR
     EXPECT_EQ(range.bytes, 0u) << "a sanitizer's allocator is left alone";
     return;
 #endif
