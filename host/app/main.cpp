@@ -8,7 +8,6 @@
 #include <string>
 
 #include "app/commands.h"
-#include "common/huge_pages.h"
 #include "common/error.h"
 #include "distributed/launch.h"
 #include "distributed/mpi_job.h"
@@ -51,8 +50,6 @@ int fail(vitrum::MpiJob* job, int exitCode, const std::string& message) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    // Before Vulkan and the scene take their memory (common/huge_pages.h).
-    vitrum::useHugePagesForTheHeap();
     if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
         std::cout << kUsage;
         return argc < 2 ? 1 : 0;

@@ -18,6 +18,7 @@
 #include "common/atomic_file.h"
 #include "common/byte_size.h"
 #include "common/error.h"
+#include "common/huge_pages.h"
 #include "common/progress.h"
 #include "cpu/reference_renderer.h"
 #include "distributed/distributed_render.h"
@@ -127,6 +128,7 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
     std::optional<VulkanDevice> device;
     TexelLimit texelLimit;
     if (command.backend == Backend::Vulkan) {
+        const HugePageHeap window;  // the driver's loading and self-check (common/huge_pages.h)
         device.emplace(command.device);
         const BufferLimit limit = bufferLimit(*device, BufferKind::Storage);
         texelLimit = {limit.bytes, describeBufferLimit(*device, BufferKind::Storage)};

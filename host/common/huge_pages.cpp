@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <cstdlib>
+#include <iterator>
 
 namespace vitrum {
 
@@ -17,24 +18,42 @@ void adviseHugePages(void* block, std::size_t bytes) {
     if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
 }
 
-AdvisedRange useHugePagesForTheHeap() {
-#ifdef VITRUM_SANITIZED_ALLOCATOR
-    return {};
-#else
+namespace {
+// glibc's own initial values (mallopt(3)).
+constexpr int kDefaultTrimThreshold = 128 << 10;
+constexpr int kDefaultTopPad = 128 << 10;
+}  // namespace
+
+HugePageHeap::HugePageHeap() {
+#ifndef VITRUM_SANITIZED_ALLOCATOR
     // Any mallopt call stops glibc from raising its mmap threshold as blocks are freed: fixed at
-    // the ceiling it would rise to, the blocks of 128 KiB to 32 MiB that a render allocates and
-    // frees again (Mesa's device memory among them) come from the advised heap, not from fresh
-    // mappings each time.
+    // the ceiling it would rise to, the blocks of 128 KiB to 32 MiB that Mesa allocates and frees
+    // again (its device memory among them) come from the heap, not from fresh mappings each time.
     mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TRIM_THRESHOLD, int(2 * kHugePageHeapBytes));
     mallopt(M_TOP_PAD, int(kHugePageHeapBytes));
-    void* grow = std::malloc(std::size_t(1) << 20);  // below the threshold: the heap grows by the pad
-    if (!grow) return {};
-    const auto from = reinterpret_cast<std::uintptr_t>(grow);
+    // The heap grows by the pad once a block does not fit its free memory: blocks of growing size,
+    // all below the mmap threshold, until the break moves.
+    const auto before = reinterpret_cast<std::uintptr_t>(sbrk(0));
+    constexpr std::size_t kMiB[] = {1, 2, 4, 8, 16, 31};
+    void* blocks[std::size(kMiB)] = {};
+    std::uintptr_t from = 0;
+    for (std::size_t i = 0; i < std::size(kMiB) && reinterpret_cast<std::uintptr_t>(sbrk(0)) == before; ++i) {
+        blocks[i] = std::malloc(kMiB[i] << 20);
+        if (blocks[i]) from = reinterpret_cast<std::uintptr_t>(blocks[i]);
+    }
     const auto top = reinterpret_cast<std::uintptr_t>(sbrk(0));
-    const AdvisedRange range = top > from ? AdvisedRange{grow, top - from} : AdvisedRange{};
-    adviseHugePages(range.begin, range.bytes);
-    std::free(grow);
-    return range;
+    if (top > before && from > 0 && top > from) advised_ = {reinterpret_cast<void*>(from), top - from};
+    adviseHugePages(advised_.begin, advised_.bytes);
+    for (void* block : blocks) std::free(block);
+    mallopt(M_TOP_PAD, kDefaultTopPad);
+#endif
+}
+
+HugePageHeap::~HugePageHeap() {
+#ifndef VITRUM_SANITIZED_ALLOCATOR
+    mallopt(M_TRIM_THRESHOLD, kDefaultTrimThreshold);
+    malloc_trim(0);
 #endif
 }
 

@@ -1,7 +1,7 @@
 // Transparent huge pages where first touches of 4 KiB pages cost most: each is a page fault (about
 // 12 us on the machines of docs/performance.md). A big model touches gigabytes (issue 52;
 // docs/gpu-design.md, "A big model to the image as fast as an Embree renderer"), and every render
-// touches tens of MB of fresh heap, most of it in Mesa's pipeline creation ("Huge pages for the
+// touches tens of MB of fresh heap in Mesa's device and pipeline creation ("Huge pages for the
 // heap").
 #pragma once
 
@@ -27,19 +27,34 @@ inline constexpr std::size_t kHugePageBlock = std::size_t(4) << 20;
 // not ordinary memory, ignores it. Call it before the block is first written.
 void adviseHugePages(void* block, std::size_t bytes);
 
-// The heap's bytes that useHugePagesForTheHeap puts in huge pages: more than a render of a small
-// scene takes from it.
+// The heap's bytes that a HugePageHeap puts in huge pages: more than Mesa's pipeline creation
+// takes from it.
 inline constexpr std::size_t kHugePageHeapBytes = std::size_t(128) << 20;
 
-// Grows the heap (glibc's main arena) by kHugePageHeapBytes at once and advises huge pages for that
-// part, and keeps blocks below glibc's largest mmap threshold (32 MiB) on the heap. Call it first
-// thing in a program. Address space only: a huge page is resident once touched; the heap's later
-// growth stays in 4 KiB pages. Returns the advised range's start and length ({nullptr, 0} where
-// nothing was advised: a sanitizer's allocator, or a heap that did not grow).
 struct AdvisedRange {
     void* begin = nullptr;
     std::size_t bytes = 0;
 };
-AdvisedRange useHugePagesForTheHeap();
+
+// While it lives, the heap (glibc's main arena) has kHugePageHeapBytes at its top advised for huge
+// pages and kept from being given back: for work that takes and frees tens of MB of blocks, as
+// Mesa's device creation, pipeline creation and device memory do, where each fresh 4 KiB page
+// would be a fault. Its end gives back what is free on the heap (malloc_trim), so that the
+// process's memory between windows (a big model's load and BVH) is as it was without them.
+// Blocks below glibc's largest mmap threshold (32 MiB) come from the heap from the first window
+// on. One window at a time, on one thread.
+class HugePageHeap {
+public:
+    HugePageHeap();
+    ~HugePageHeap();
+    HugePageHeap(const HugePageHeap&) = delete;
+    HugePageHeap& operator=(const HugePageHeap&) = delete;
+    // The advised range ({nullptr, 0} where nothing was: a sanitizer's allocator, or a heap that
+    // did not grow).
+    AdvisedRange advised() const { return advised_; }
+
+private:
+    AdvisedRange advised_;
+};
 
 }  // namespace vitrum

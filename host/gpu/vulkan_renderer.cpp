@@ -5,6 +5,7 @@
 #include <cstring>
 #include <optional>
 
+#include "common/huge_pages.h"
 #include "gpu/gpu_buffer.h"
 #include "gpu/gpu_layout.h"
 #include "gpu/scene_fit.h"
@@ -284,6 +285,11 @@ void renderVulkanTiles(VulkanDevice& device, const Scene& scene, const Bvh& bvh,
         options.specialize ? TraceSpecialization::forScene(scene, stats.features) : TraceSpecialization::general();
     stats.kernel = kernel;
 
+    // From the buffers to the last tile, Mesa takes and frees tens of MB of heap (its pipeline
+    // creation most), and the tiles' buffers are its memory: in huge pages on a device that runs on
+    // the CPU, where the page faults are the process's own (common/huge_pages.h).
+    std::optional<HugePageHeap> window;
+    if (device.description().cpu) window.emplace();
     auto start = Clock::now();
     if (options.progress) options.progress("uploading the scene", 0.0);
     const TileGrid grid = tileGridFor(device, scene, options);
