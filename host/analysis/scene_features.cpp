@@ -225,10 +225,8 @@ SceneFeatures analyseScene(const Scene& scene, std::size_t flatAnalysisTriangles
     // An instanced scene's triangles are compared as placed in the world where they are few
     // enough (a scene of triangles and materials alone); beyond that, what the boxes allow is
     // taken as found, which costs probes, never images.
-    std::size_t placedCount = worldTriangleCount(scene);
-    for (const Instance& instance : scene.instances) placedCount += scene.meshes[instance.mesh].count;
     Scene placed;
-    const bool byBoxes = !scene.instances.empty() && placedCount > flatAnalysisTriangles;
+    const bool byBoxes = !scene.instances.empty() && placedTriangleCount(scene) > flatAnalysisTriangles;
     if (!scene.instances.empty() && !byBoxes) {
         placed.materials = scene.materials;
         placed.triangles = placedTriangles(scene, [](const Instance&) { return true; });

@@ -14,6 +14,7 @@
 #include "analysis/scene_features.h"
 #include "gpu_input/scene_geometry_bytes.h"
 #include "gpu_input/trace_specialization.h"
+#include "scene/instances.h"
 #include "scene/scene_names.h"
 #include "shared/gpu_types.h"
 #include "scene/scene_loader.h"
@@ -48,8 +49,7 @@ int infoCommand(int argc, char** argv, int first) {
     std::printf("triangles: %zu in %zu objects\n", scene.triangles.size(), scene.objectNames.size());
     if (!scene.instances.empty()) {
         // What instancing saves (docs/gpu-design.md, "Instancing"): the triangles placed.
-        std::uint64_t placed = worldTriangleCount(scene);
-        for (const Instance& instance : scene.instances) placed += scene.meshes[instance.mesh].count;
+        const std::uint64_t placed = placedTriangleCount(scene);
         std::printf("instances: %zu of %zu meshes, %llu triangles placed (%zu stored)\n", scene.instances.size(),
                     scene.meshes.size(), static_cast<unsigned long long>(placed), scene.triangles.size());
     }

@@ -1,8 +1,8 @@
-// Transparent huge pages where first touches of 4 KiB pages cost most: each is a page fault (about
-// 12 us on the machines of docs/performance.md). A big model touches gigabytes (issue 52;
+// Transparent huge pages where first touches of 4 KiB pages cost most: each is a page fault, slow
+// on the virtual machines the benchmarks ran on. A big model touches gigabytes (issue 52;
 // docs/gpu-design.md, "A big model to the image as fast as an Embree renderer"), and every render
-// touches tens of MB of fresh heap in Mesa's device and pipeline creation ("Huge pages for the
-// heap").
+// touches tens of MB of fresh heap in Mesa's device and pipeline creation (docs/gpu-design.md,
+// "Huge pages for the heap").
 #pragma once
 
 #include <cstddef>

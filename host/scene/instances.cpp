@@ -122,6 +122,12 @@ Scene flattened(const Scene& scene) {
     return flat;
 }
 
+std::uint64_t placedTriangleCount(const Scene& scene) {
+    std::uint64_t placed = worldTriangleCount(scene);
+    for (const Instance& instance : scene.instances) placed += scene.meshes[instance.mesh].count;
+    return placed;
+}
+
 std::vector<Triangle> placedTriangles(const Scene& scene, const std::function<bool(const Instance&)>& keep) {
     std::vector<Triangle> placed(scene.triangles.begin(), scene.triangles.begin() + worldTriangleCount(scene));
     for (const Instance& instance : scene.instances) {

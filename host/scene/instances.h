@@ -48,6 +48,9 @@ FloatBox worldBox(const Scene& scene);
 // mesh with the instance's transform (each instance's objects its own): what instancing saves,
 // and what tests compare an instanced render with.
 Scene flattened(const Scene& scene);
+// The triangles the scene places in the world: its world's and every copy's (what instancing saves
+// storing, and what the analysis compares up to kFlatAnalysisTriangles).
+std::uint64_t placedTriangleCount(const Scene& scene);
 // The world's triangles, then those of each instance for which keep(instance) is true, moved to
 // the world as flattened() moves them.
 std::vector<Triangle> placedTriangles(const Scene& scene, const std::function<bool(const Instance&)>& keep);

@@ -20,6 +20,7 @@ struct Mapping {
     std::uintptr_t begin = 0, end = 0;
     std::string name;
     bool hugePages = false;  // VmFlags "hg": advised MADV_HUGEPAGE
+    std::size_t residentBytes = 0;  // Rss
 };
 
 // The process's mappings from /proc/self/smaps (proc(5)).
@@ -33,6 +34,9 @@ std::vector<Mapping> mappings() {
         if (first == "VmFlags:") {
             for (std::string flag; fields >> flag;)
                 if (flag == "hg") all.back().hugePages = true;
+        } else if (first == "Rss:") {
+            fields >> all.back().residentBytes;
+            all.back().residentBytes <<= 10;  // given in kB
         } else if (const auto dash = first.find('-'); dash != std::string::npos && first.back() != ':') {
             Mapping m;
             m.begin = std::stoull(first.substr(0, dash), nullptr, 16);
@@ -45,26 +49,12 @@ std::vector<Mapping> mappings() {
     return all;
 }
 
-// The bytes of the heap resident now: the Rss of /proc/self/smaps's [heap] mappings.
+// The bytes of the heap resident now.
 std::size_t residentHeapBytes() {
-    std::ifstream smaps("/proc/self/smaps");
-    std::size_t kib = 0;
-    bool inHeap = false;
-    for (std::string line; std::getline(smaps, line);) {
-        std::istringstream fields(line);
-        std::string first;
-        fields >> first;
-        if (const auto dash = first.find('-'); dash != std::string::npos && first.back() != ':') {
-            std::string permissions, offset, device, inode, name;
-            fields >> permissions >> offset >> device >> inode >> name;
-            inHeap = name == "[heap]";
-        } else if (inHeap && first == "Rss:") {
-            std::size_t value = 0;
-            fields >> value;
-            kib += value;
-        }
-    }
-    return kib << 10;
+    std::size_t bytes = 0;
+    for (const Mapping& m : mappings())
+        if (m.name == "[heap]") bytes += m.residentBytes;
+    return bytes;
 }
 
 TEST(HugePages, AWindowGrowsTheHeapInHugePagesKeepsMesasBlocksAndGivesThemBack) {

@@ -119,8 +119,8 @@ TEST(Instancing, TheAnalysisOfAnInstancedSceneCoversItsFlattenedOnes) {
     EXPECT_EQ(instanced.opaqueContactPossible, flat.opaqueContactPossible);
     EXPECT_EQ(instanced.coincidentOpaquePossible, flat.coincidentOpaquePossible);
     EXPECT_EQ(instanced.touchingMediaPossible, flat.touchingMediaPossible);
-    // This scene's floor is opaque and touches no copy's surface from behind: the boxes take
-    // coincident opaque surfaces as possible, the triangles do not.
+    // This scene's only opaque object is its floor, so no two opaque surfaces can coincide: the
+    // triangles find none, the boxes take any opaque triangle as making them possible.
     EXPECT_TRUE(byBoxes.coincidentOpaquePossible);
     EXPECT_FALSE(flat.coincidentOpaquePossible);
     // The touching distance goes by the instances' boxes, a little wider than their triangles'.
