@@ -64,18 +64,14 @@ void startWaitingWavelength() {
 }
 
 // Whether st.ray, white, splits at a glass hit on `object`: the medium of the object, the one the
-// ray is in, or that of a touching glass the ray crosses there (finishTrace's selection: the ray
-// enters or leaves it at this hit) disperses (render-model-decisions.md, "Dispersion"; the CPU
-// reference's splitsHere).
-bool splitsAt(uint object) {
+// ray is in, or that of a touching glass the ray crosses there (`touching`, finishTrace's
+// selection: the ray enters or leaves it at this hit) disperses (render-model-decisions.md,
+// "Dispersion"; the CPU reference's splitsHere).
+bool splitsAt(uint object, uvec4 touching) {
     if (!kDispersion || wavelengthCode(st.ray) != 0u || wavelengthCount() == 0u) return false;
     uint count = mediaCount(st.ray);
     if (objectDispersion(object) != 0.0 || (count > 0u && objectDispersion(st.ray.media[ruling(st.ray.media, count)]) != 0.0))
         return true;
-    if (!kTouchingProbe || !touchingProbeOn()) return false;
-    float farthest = st.traversal.tMax;
-    uvec4 touching = selectTouching(st.candidates.touchingObjects, st.candidates.touchingT,
-                                    st.traversal.tMax + touchingDistance(), object, farthest);
     uvec3 objects = touching.xyz & 0x7FFFFFFFu;
     return (touching.w > 0u && objectDispersion(objects.x) != 0.0) || (touching.w > 1u && objectDispersion(objects.y) != 0.0) ||
            (touching.w > 2u && objectDispersion(objects.z) != 0.0);
@@ -108,11 +104,19 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
         placed = instanceNumbered(instance);
         object += placed.info.z;
     }
-    if (kDispersion && usesMaterial(kMaterialGlass) && materialModel(m) == kMaterialGlass && splitsAt(object)) {
+    float t = st.traversal.tMax;
+    // Touching objects (lecture, "Problematic Cases"): at a glass hit, the other glass surfaces
+    // within the touching distance of it along the ray, which the traversal collected; the split
+    // below and the glass's shading both go by them.
+    bool glass = usesMaterial(kMaterialGlass) && materialModel(m) == kMaterialGlass;
+    bool probed = glass && kTouchingProbe && touchingProbeOn();
+    float farthest = t;
+    uvec4 touching = uvec4(0u);
+    if (probed) touching = selectTouching(st.candidates.touchingObjects, st.candidates.touchingT, t + touchingDistance(), object, farthest);
+    if (kDispersion && glass && splitsAt(object, touching)) {
         splitIntoWavelengths();
         return;
     }
-    float t = st.traversal.tMax;
     if (kAbsorption) st.ray.weight.xyz *= beerLambert(mu, t);  // exp(-0 t) is 1 only for finite t: not folded
 
     mat3 normals = loadVertexNormals(triangle);
@@ -151,15 +155,8 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
     }
 
     uint model = materialModel(m);
-    if (usesMaterial(kMaterialGlass) && model == kMaterialGlass) {
-        // Touching objects (lecture, "Problematic Cases"): the other glass surfaces within the
-        // touching distance of this hit along the ray, which the traversal collected.
-        float farthest = t;
-        uvec4 touching = uvec4(0u);
-        if (kTouchingProbe && touchingProbeOn()) {
-            counters.touchingProbes += 1u;
-            touching = selectTouching(st.candidates.touchingObjects, st.candidates.touchingT, t + touchingDistance(), st.hit.object, farthest);
-        }
+    if (glass) {
+        if (probed) counters.touchingProbes += 1u;
         st.touching = touching;
         st.farthestTouching = farthest;
         st.phase = kPhaseScatter;
