@@ -597,7 +597,7 @@ void renderRows(const Scene& scene, const Bvh& bvh, unsigned threadCount, const 
     if (options.progress) options.progress(0.0);
     const std::uint32_t width = scene.camera.width, height = scene.camera.height;
     std::atomic<std::uint32_t> nextRow{0};
-    std::atomic<std::uint32_t> rowsDone{0};
+    std::uint32_t rowsDone = 0;  // guarded by progressMutex
     std::mutex statsMutex, progressMutex;
     std::vector<std::vector<TracedRay>> threadRays(options.tracedRays ? threadCount : 0);
     std::atomic<unsigned> nextThread{0};
@@ -616,10 +616,11 @@ void renderRows(const Scene& scene, const Bvh& bvh, unsigned threadCount, const 
                     if (!std::isfinite(pixel[i]) || (pixel[i] < 0.0f && !tracer.disperses())) pixel[i] = 0.0f;
                 image.at(x, y) = pixel;
             }
-            const std::uint32_t done = ++rowsDone;
             if (options.progress) {
-                std::lock_guard lock(progressMutex);  // the callback draws: one thread at a time
-                options.progress(double(done) / double(height));
+                // The callback draws: one thread at a time, and the count taken under the same
+                // lock, so that the fractions it is given never go back.
+                std::lock_guard lock(progressMutex);
+                options.progress(double(++rowsDone) / double(height));
             }
         }
         std::lock_guard lock(statsMutex);
