@@ -4,9 +4,10 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
-#include <iterator>
+#include <vector>
 
 namespace vitrum {
 
@@ -33,14 +34,22 @@ HugePageHeap::HugePageHeap() {
     mallopt(M_TRIM_THRESHOLD, int(2 * kHugePageHeapBytes));
     mallopt(M_TOP_PAD, int(kHugePageHeapBytes));
     // The heap grows by the pad once a block does not fit its free memory: blocks of growing size,
-    // all below the mmap threshold, until the break moves.
+    // all below the mmap threshold, until the break moves. A heap with much free memory (work
+    // before the window freed it) takes more of them, up to kMaxProbeBytes; taking a free block
+    // writes only its header.
+    constexpr std::size_t kMaxProbeBytes = std::size_t(4) << 30;
+    std::vector<void*> blocks;
+    blocks.reserve(kMaxProbeBytes / (std::size_t(31) << 20) + 6);  // no growth of its own while probing
     const auto before = reinterpret_cast<std::uintptr_t>(sbrk(0));
-    constexpr std::size_t kMiB[] = {1, 2, 4, 8, 16, 31};
-    void* blocks[std::size(kMiB)] = {};
+    std::size_t taken = 0;
     std::uintptr_t from = 0;
-    for (std::size_t i = 0; i < std::size(kMiB) && reinterpret_cast<std::uintptr_t>(sbrk(0)) == before; ++i) {
-        blocks[i] = std::malloc(kMiB[i] << 20);
-        if (blocks[i]) from = reinterpret_cast<std::uintptr_t>(blocks[i]);
+    for (std::size_t mib = 1; reinterpret_cast<std::uintptr_t>(sbrk(0)) == before && taken < kMaxProbeBytes;
+         mib = std::min<std::size_t>(2 * mib, 31)) {
+        void* block = std::malloc(mib << 20);
+        if (!block) break;
+        blocks.push_back(block);
+        taken += mib << 20;
+        from = reinterpret_cast<std::uintptr_t>(block);
     }
     const auto top = reinterpret_cast<std::uintptr_t>(sbrk(0));
     if (top > before && from > 0 && top > from) advised_ = {reinterpret_cast<void*>(from), top - from};

@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "common/huge_pages.h"
 
@@ -92,6 +93,27 @@ TEST(HugePages, AWindowGrowsTheHeapInHugePagesKeepsMesasBlocksAndGivesThemBack) 
     const std::size_t during = residentHeapBytes();
     window.reset();
     EXPECT_GE(during, residentHeapBytes() + (std::size_t(6) << 20));
+}
+
+// Work before a window can leave a hole of free memory in the heap, larger than the window's
+// first blocks (1 to 31 MiB): the window takes blocks until the heap grows all the same, so that
+// its range lies at the top, fresh.
+TEST(HugePages, AWindowAfterWorkThatLeftTheHeapHalfFreeStillAdvisesItsRange) {
+    if (!std::filesystem::exists("/sys/kernel/mm/transparent_hugepage/enabled"))
+        GTEST_SKIP() << "this kernel has no transparent huge pages";
+    { const HugePageHeap first; }  // since a window, blocks below 32 MiB come from the heap
+    std::vector<void*> work;
+    for (int i = 0; i < 24; ++i) work.push_back(std::malloc(std::size_t(8) << 20));  // 192 MiB
+    void* pin = std::malloc(64);  // above them: freed, they are a hole, not the heap's top
+    for (void* block : work) std::free(block);
+    const HugePageHeap window;
+    const AdvisedRange range = window.advised();
+    std::free(pin);
+#ifdef VITRUM_SANITIZED_ALLOCATOR
+    EXPECT_EQ(range.bytes, 0u) << "a sanitizer's allocator is left alone";
+    return;
+#endif
+    EXPECT_GE(range.bytes, kHugePageHeapBytes);
 }
 
 }  // namespace
