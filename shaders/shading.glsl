@@ -114,6 +114,7 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
     uvec4 touching = uvec4(0u);
     if (probed) touching = selectTouching(st.candidates.touchingObjects, st.candidates.touchingT, t + touchingDistance(), object, farthest);
     if (kDispersion && glass && splitsAt(object, touching)) {
+        counters.dispersionSplits += 1u;
         splitIntoWavelengths();
         return;
     }

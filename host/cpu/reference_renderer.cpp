@@ -172,6 +172,7 @@ private:
             // A white ray meeting a dispersive glass splits into its wavelength samples, each
             // traced again from this ray's origin with its share of the weight, as the GPU does
             // (render-model-decisions.md, "Dispersion").
+            counters.dispersionSplits += 1;
             Color sum(0);
             for (int k = 0; k < int(samples_.size()); ++k) {
                 const Color share(samples_[std::size_t(k)].weight);

@@ -50,20 +50,22 @@
     X(19, groupLoopSteps, Sum, top, group_loop_steps, Gpu)                                \
     /* surfaces of a medium inside one of higher priority, passed without an interface */ \
     X(20, falseHits, Sum, top, false_hits, Both)                                          \
+    /* white rays replaced by their wavelength samples at a dispersive glass */           \
+    X(21, dispersionSplits, Sum, top, dispersion_splits, Both)                            \
     /* most loop steps one pixel needed, over all its dispatches */                       \
-    X(21, maxPixelLoopSteps, Max, top, max_pixel_loop_steps, Gpu)                         \
+    X(22, maxPixelLoopSteps, Max, top, max_pixel_loop_steps, Gpu)                         \
     /* deepest ray traced (primary: 0) */                                                 \
-    X(22, maxRayDepth, Max, top, max_ray_depth, Both)                                     \
+    X(23, maxRayDepth, Max, top, max_ray_depth, Both)                                     \
     /* most media one ray was inside */                                                   \
-    X(23, maxMediumDepth, Max, top, max_medium_depth, Both)
+    X(24, maxMediumDepth, Max, top, max_medium_depth, Both)
 
 VITRUM_GPU_BEGIN
-VITRUM_CONST uint kStatFirstMax = 21u;  // the first Max
-VITRUM_CONST uint kStatCount = 24u;
+VITRUM_CONST uint kStatFirstMax = 22u;  // the first Max
+VITRUM_CONST uint kStatCount = 25u;
 // Not a statistic, but zeroed with them: the dispatch's next unit of work, which each subgroup
 // takes as it starts (schedule.glsl's takeUnit).
-VITRUM_CONST uint kWorkCursor = 24u;
-VITRUM_CONST uint kDispatchCounterCount = 25u;  // the buffer's uints: the statistics and the cursor
+VITRUM_CONST uint kWorkCursor = 25u;
+VITRUM_CONST uint kDispatchCounterCount = 26u;  // the buffer's uints: the statistics and the cursor
 VITRUM_GPU_END
 
 #endif

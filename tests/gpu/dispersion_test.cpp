@@ -68,9 +68,14 @@ TEST(Dispersion, WhiteThroughASlabIsEachWavelengthsFresnelSeries) {
         // together than the samples' transmittances.
         EXPECT_LT(std::max({pixel.x, pixel.y, pixel.z}) - std::min({pixel.x, pixel.y, pixel.z}), highest - lowest);
     }
+    // The pixel's one white ray splits where it meets the slab, once, and its samples do not.
+    EXPECT_EQ(dispersive.gpuStats.dispersionSplits, 1u);
+    EXPECT_EQ(dispersive.cpuStats.dispersionSplits, 1u);
     // Without dispersion: n_d for every channel.
     const RenderPair plain = renderBoth(slabUnderHalfSky(0.0f, kSamples));
     ASSERT_FALSE(plain.gpuStats.kernel->dispersion);
+    EXPECT_EQ(plain.gpuStats.dispersionSplits, 0u);
+    EXPECT_EQ(plain.cpuStats.dispersionSplits, 0u);
     const double r = std::pow((double(kFlintNd) - 1.0) / (double(kFlintNd) + 1.0), 2.0);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(plain.gpu.at(0, 0)[c], (1.0 - r) / (1.0 + r), 2e-6);
 }
