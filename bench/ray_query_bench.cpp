@@ -259,7 +259,7 @@ int run(int argc, char** argv) {
                   << " s (driver: " << driver.structures.bottomLevelBytes() / workload.scene.triangles.size()
                   << " bytes a triangle), " << bench::fixed(bench::median(bvhBuild), 4) << " s (vitrum)\n";
     }
-    const std::uint32_t messages = device.validationMessages() + rayQueryDevice.validationMessages();
+    const std::uint32_t messages = VulkanInstance::validationMessages();  // both devices'
     if (messages > 0)
         throw std::runtime_error("the Vulkan validation layer sent " + std::to_string(messages) + " messages");
     if (checkOnly) return 0;

@@ -1,11 +1,8 @@
 #include "ray_query_tracer.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
-#include <cstdlib>
 #include <cstring>
-#include <iostream>
 #include <iterator>
 #include <stdexcept>
 #include <type_traits>
@@ -18,51 +15,7 @@
 namespace vitrum::bench {
 namespace {
 
-std::atomic<std::uint32_t> gValidationMessages{0};
-
-// The same switch as VulkanDevice's (docs/environment.md).
-bool validationRequested() {
-    const char* value = std::getenv("VITRUM_VALIDATION");
-    return value && std::strcmp(value, "0") != 0;
-}
-
-VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT,
-                                                   VkDebugUtilsMessageTypeFlagsEXT,
-                                                   const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
-    ++gValidationMessages;
-    std::cerr << "vitrum_bench_ray_query: Vulkan validation: "
-              << (data && data->pMessage ? data->pMessage : "(no message)") << "\n";
-    return VK_FALSE;
-}
-
-VkInstance createInstance(bool validation) {
-    VkApplicationInfo app{
-        .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
-        .pApplicationName = "vitrum_bench_ray_query",
-        .apiVersion = VK_API_VERSION_1_2,
-    };
-    const char* layer = "VK_LAYER_KHRONOS_validation";
-    const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
-    VkInstanceCreateInfo info{
-        .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
-        .pApplicationInfo = &app,
-        .enabledLayerCount = validation ? 1u : 0u,
-        .ppEnabledLayerNames = validation ? &layer : nullptr,
-        .enabledExtensionCount = validation ? 1u : 0u,
-        .ppEnabledExtensionNames = validation ? &extension : nullptr,
-    };
-    VkInstance instance = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateInstance(&info, nullptr, &instance));
-    return instance;
-}
-
-std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
-    std::uint32_t count = 0;
-    VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, nullptr));
-    std::vector<VkPhysicalDevice> devices(count);
-    VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
-    return devices;
-}
+constexpr const char* kProgram = "vitrum_bench_ray_query";
 
 // VK_KHR_acceleration_structure needs VK_KHR_deferred_host_operations enabled with it (the
 // extension's dependencies; buffer device addresses and descriptor indexing are core in 1.2).
@@ -207,47 +160,22 @@ void AccelerationStructure::reset() {
 // ---- RayQueryDevice ----------------------------------------------------------------------------
 
 std::string RayQueryDevice::describeDevices() {
-    VkInstance instance = createInstance(false);
+    const VulkanInstance instance(kProgram, false);
     std::string lines;
-    try {
-        for (VkPhysicalDevice device : physicalDevices(instance)) {
-            VkPhysicalDeviceProperties properties;
-            vkGetPhysicalDeviceProperties(device, &properties);
-            const std::string lacks = lacksForRayQueries(device);
-            lines += std::string(properties.deviceName) + ", " +
-                     (properties.apiVersion >= VK_API_VERSION_1_2 ? driverInfoOf(device)
-                                                                  : std::string("Vulkan 1.1 or older")) +
-                     ": " + (lacks.empty() ? "ray queries (VK_KHR_ray_query, VK_KHR_acceleration_structure)" : lacks) +
-                     "\n";
-        }
-    } catch (...) {
-        vkDestroyInstance(instance, nullptr);
-        throw;
+    for (VkPhysicalDevice device : instance.physicalDevices()) {
+        VkPhysicalDeviceProperties properties;
+        vkGetPhysicalDeviceProperties(device, &properties);
+        const std::string lacks = lacksForRayQueries(device);
+        lines += std::string(properties.deviceName) + ", " +
+                 (properties.apiVersion >= VK_API_VERSION_1_2 ? driverInfoOf(device) : std::string("Vulkan 1.1 or older")) +
+                 ": " + (lacks.empty() ? "ray queries (VK_KHR_ray_query, VK_KHR_acceleration_structure)" : lacks) + "\n";
     }
-    vkDestroyInstance(instance, nullptr);
     return lines;
 }
 
-RayQueryDevice::RayQueryDevice() {
-    const bool validation = validationRequested();
-    instance_ = createInstance(validation);
+RayQueryDevice::RayQueryDevice() : instance_(kProgram) {
     try {
-        if (validation) {
-            VkDebugUtilsMessengerCreateInfoEXT info{
-                .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
-                .messageSeverity =
-                    VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
-                .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                               VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                               VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
-                .pfnUserCallback = onValidationMessage,
-            };
-            auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-                vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-            if (!create) throw VulkanError(VK_ERROR_EXTENSION_NOT_PRESENT, "vkCreateDebugUtilsMessengerEXT missing");
-            VK_CHECK(create(instance_, &info, nullptr, &messenger_));
-        }
-        const std::vector<VkPhysicalDevice> devices = physicalDevices(instance_);
+        const std::vector<VkPhysicalDevice> devices = instance_.physicalDevices();
         index_ = std::uint32_t(devices.size());
         for (std::uint32_t i = 0; i < devices.size() && index_ == devices.size(); ++i)
             if (lacksForRayQueries(devices[i]).empty()) index_ = i;
@@ -410,17 +338,7 @@ void RayQueryDevice::release() {
     pool_.reset();
     if (device_) vkDestroyDevice(device_, nullptr);
     device_ = VK_NULL_HANDLE;
-    if (messenger_) {
-        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
-        if (destroy) destroy(instance_, messenger_, nullptr);
-        messenger_ = VK_NULL_HANDLE;
-    }
-    if (instance_) vkDestroyInstance(instance_, nullptr);
-    instance_ = VK_NULL_HANDLE;
 }
-
-std::uint32_t RayQueryDevice::validationMessages() const { return gValidationMessages.load(); }
 
 // Mapped buffers: host-visible, coherent memory. The others: device-local where the device has
 // such memory (on lavapipe every type is the host's memory, and device-local).

@@ -14,6 +14,7 @@
 
 #include "cpu/reference_renderer.h"
 #include "gpu/vulkan_handle.h"
+#include "gpu/vulkan_instance.h"
 
 namespace vitrum::bench {
 
@@ -58,9 +59,9 @@ private:
     VkDeviceAddress address_ = 0;
 };
 
-// The instance, the first device that offers ray queries, one compute queue and the ray-query
-// kernel's pipeline. With VITRUM_VALIDATION=1 the Khronos validation layer is on, as on
-// VulkanDevice, and its messages are printed and counted.
+// The first device of a Vulkan instance (gpu/vulkan_instance.h, which validates with
+// VITRUM_VALIDATION=1, as VulkanDevice's) that offers ray queries, one compute queue and the
+// ray-query kernel's pipeline.
 class RayQueryDevice {
 public:
     // Throws std::runtime_error, naming every device's driver, where none offers ray queries.
@@ -77,7 +78,6 @@ public:
     std::uint32_t index() const { return index_; }
     const std::string& name() const { return name_; }
     const std::string& driverInfo() const { return driverInfo_; }
-    std::uint32_t validationMessages() const;
 
     VkDevice device() const { return device_; }
     std::uint32_t memoryType(std::uint32_t allowed, bool mapped) const;
@@ -115,8 +115,7 @@ private:
     void createPipeline();
     void release();
 
-    VkInstance instance_ = VK_NULL_HANDLE;
-    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    VulkanInstance instance_;  // first: destroyed after the device
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
     VkPhysicalDeviceMemoryProperties memory_{};
     std::uint32_t index_ = 0;

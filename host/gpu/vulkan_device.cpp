@@ -1,11 +1,9 @@
 #include "gpu/vulkan_device.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
-#include <iostream>
 
 #include "common/error.h"
 #include "gpu/subgroup_self_check.h"
@@ -15,21 +13,6 @@
 namespace vitrum {
 namespace {
 
-std::atomic<std::uint32_t> gValidationMessages{0};
-
-bool validationRequested() {
-    const char* value = std::getenv("VITRUM_VALIDATION");
-    return value && std::strcmp(value, "0") != 0;
-}
-
-VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT,
-                                                   VkDebugUtilsMessageTypeFlagsEXT,
-                                                   const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
-    ++gValidationMessages;
-    std::cerr << "vitrum: Vulkan validation: " << (data && data->pMessage ? data->pMessage : "(no message)") << "\n";
-    return VK_FALSE;
-}
-
 const char* deviceTypeName(VkPhysicalDeviceType type) {
     switch (type) {
         case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
@@ -38,42 +21,6 @@ const char* deviceTypeName(VkPhysicalDeviceType type) {
         case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
         default: return "other";
     }
-}
-
-VkInstance createInstance(bool validation) {
-    VkApplicationInfo app{
-        .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
-        .pApplicationName = "vitrum",
-        .applicationVersion = VK_MAKE_VERSION(0, 1, 0),
-        .pEngineName = "vitrum",
-        .engineVersion = VK_MAKE_VERSION(0, 1, 0),
-        .apiVersion = VK_API_VERSION_1_2,
-    };
-    const char* layer = "VK_LAYER_KHRONOS_validation";
-    const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
-    VkInstanceCreateInfo info{
-        .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
-        .pApplicationInfo = &app,
-        .enabledLayerCount = validation ? 1u : 0u,
-        .ppEnabledLayerNames = validation ? &layer : nullptr,
-        .enabledExtensionCount = validation ? 1u : 0u,
-        .ppEnabledExtensionNames = validation ? &extension : nullptr,
-    };
-    VkInstance instance = VK_NULL_HANDLE;
-    VkResult result = vkCreateInstance(&info, nullptr, &instance);
-    if (result == VK_ERROR_LAYER_NOT_PRESENT)
-        throw VulkanError(result, "VITRUM_VALIDATION is set but the Khronos validation layer is not installed "
-                                  "(Debian package vulkan-validationlayers)");
-    VK_CHECK(result);
-    return instance;
-}
-
-std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
-    std::uint32_t count = 0;
-    VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, nullptr));
-    std::vector<VkPhysicalDevice> devices(count);
-    VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
-    return devices;
 }
 
 std::string lowercase(std::string s) {
@@ -192,39 +139,16 @@ DeviceDescription describeDevice(VkPhysicalDevice device, std::uint32_t index) {
 }  // namespace
 
 std::vector<DeviceDescription> VulkanDevice::listDevices() {
-    VkInstance instance = createInstance(false);
+    const VulkanInstance instance("vitrum", false);
+    const std::vector<VkPhysicalDevice> devices = instance.physicalDevices();
     std::vector<DeviceDescription> result;
-    try {
-        auto devices = physicalDevices(instance);
-        for (std::uint32_t i = 0; i < devices.size(); ++i) result.push_back(describeDevice(devices[i], i));
-    } catch (...) {
-        vkDestroyInstance(instance, nullptr);
-        throw;
-    }
-    vkDestroyInstance(instance, nullptr);
+    for (std::uint32_t i = 0; i < devices.size(); ++i) result.push_back(describeDevice(devices[i], i));
     return result;
 }
 
-VulkanDevice::VulkanDevice(const std::string& selector) {
-    bool validation = validationRequested();
-    instance_ = createInstance(validation);
+VulkanDevice::VulkanDevice(const std::string& selector) : instance_("vitrum") {
     try {
-        if (validation) {
-            VkDebugUtilsMessengerCreateInfoEXT info{
-                .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
-                .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                                   VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
-                .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                               VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                               VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
-                .pfnUserCallback = onValidationMessage,
-            };
-            auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-                vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-            if (!create) throw VulkanError(VK_ERROR_EXTENSION_NOT_PRESENT, "vkCreateDebugUtilsMessengerEXT missing");
-            VK_CHECK(create(instance_, &info, nullptr, &messenger_));
-        }
-        auto devices = physicalDevices(instance_);
+        const std::vector<VkPhysicalDevice> devices = instance_.physicalDevices();
         const std::size_t index = selectDevice(devices, selector);
         physicalDevice_ = devices[index];
         vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
@@ -332,17 +256,7 @@ void VulkanDevice::release() {
     commandPool_.reset();
     if (device_) vkDestroyDevice(device_, nullptr);
     device_ = VK_NULL_HANDLE;
-    if (messenger_) {
-        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
-        if (destroy) destroy(instance_, messenger_, nullptr);
-        messenger_ = VK_NULL_HANDLE;
-    }
-    if (instance_) vkDestroyInstance(instance_, nullptr);
-    instance_ = VK_NULL_HANDLE;
 }
-
-std::uint32_t VulkanDevice::validationMessages() const { return gValidationMessages.load(); }
 
 VulkanDevice::PooledCommands::PooledCommands(VulkanDevice& device) : device_(device) {
     VkCommandBufferAllocateInfo info{

@@ -1,6 +1,5 @@
-// The Vulkan instance, the chosen physical device, its logical device and one compute queue.
-// With VITRUM_VALIDATION=1 in the environment the Khronos validation layer is enabled and every
-// message it sends is printed and counted (tests fail on any).
+// The chosen physical device of a Vulkan instance (gpu/vulkan_instance.h, which validates with
+// VITRUM_VALIDATION=1), its logical device and one compute queue.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +9,7 @@
 #include <vulkan/vulkan.h>
 
 #include "gpu/vulkan_handle.h"
+#include "gpu/vulkan_instance.h"
 
 namespace vitrum {
 
@@ -79,8 +79,8 @@ public:
     // Which trace kernel this device gets, and why (gpu/subgroup_self_check.h): "fast: ..." where
     // full subgroups passed the self-check, else "safe: ..." with the reason.
     const std::string& kernelPath() const { return kernelPath_; }
-    // Messages the validation layer sent so far (0 when validation is off).
-    std::uint32_t validationMessages() const;
+    // Messages the validation layer sent so far, to any device of the process (0 when validation is off).
+    std::uint32_t validationMessages() const { return VulkanInstance::validationMessages(); }
 
     const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
 
@@ -112,10 +112,9 @@ private:
     void beginCommands(VkCommandBuffer commands);
     void endSubmitWait(VkCommandBuffer commands);
 
-    VkInstance instance_ = VK_NULL_HANDLE;
+    VulkanInstance instance_;  // first: destroyed after the device
     DeviceDescription description_;
     std::string kernelPath_;
-    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memoryProperties_{};
