@@ -17,7 +17,6 @@
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
-#include <nlohmann/json.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include "scene/tinygltf.h"
 
@@ -25,6 +24,7 @@
 #include "common/file_extension.h"
 #include "image/image.h"
 #include "image/srgb.h"
+#include "scene/gltf_errors.h"
 #include "scene/instances.h"
 #include "scene/mtl_material.h"
 #include "scene/quote_input.h"
@@ -142,39 +142,6 @@ bool keepEncodedImage(tinygltf::Image* image, const int, std::string* err, std::
     return true;
 }
 
-std::string oneLine(std::string s) {
-    std::replace(s.begin(), s.end(), '\n', ' ');
-    s.erase(s.find_last_not_of(' ') + 1);
-    return s;
-}
-
-// tinygltf names a file it cannot find ("File not found : tri.bin"), not the element that names
-// it: the JSON path of the buffer or image whose uri it is ("buffers[0]: "), read from a .gltf's
-// text; empty where there is none to find.
-std::string elementNamingMissingFile(const fs::path& file, const std::string& errors) {
-    const std::string marker = "File not found : ";
-    const std::size_t at = errors.find(marker);
-    if (at == std::string::npos || lowerCaseExtension(file) != ".gltf") return "";
-    std::string missing = errors.substr(at + marker.size());
-    missing.erase(std::min(missing.find('\n'), missing.size()));
-    try {
-        std::ifstream in(file, std::ios::binary);
-        const nlohmann::json doc = nlohmann::json::parse(in);
-        for (const char* kind : {"buffers", "images"}) {
-            if (!doc.contains(kind) || !doc[kind].is_array()) continue;
-            for (std::size_t i = 0; i < doc[kind].size(); ++i) {
-                const nlohmann::json& element = doc[kind][i];
-                if (!element.is_object() || !element.contains("uri") || !element["uri"].is_string()) continue;
-                const std::string uri = element["uri"].get<std::string>();
-                if (uri == missing || (file.parent_path() / uri).lexically_normal() == fs::path(missing).lexically_normal())
-                    return std::string(kind) + "[" + std::to_string(i) + "]: ";
-            }
-        }
-    } catch (const nlohmann::json::exception&) {
-    }
-    return "";
-}
-
 double numberOr(const tinygltf::Value& object, const char* key, double fallback) {
     if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsNumber()) return fallback;
     return object.Get(key).GetNumberAsDouble();
@@ -267,7 +234,7 @@ private:
         const bool ok = binary ? parser.LoadBinaryFromFile(&model_, &errors, &warnings, file_.string())
                                : parser.LoadASCIIFromFile(&model_, &errors, &warnings, file_.string());
         if (!ok || !errors.empty())
-            fail(elementNamingMissingFile(file_, errors) + oneLine(errors.empty() ? "unreadable glTF" : errors));
+            fail(describeGltfErrors(file_, errors));
         std::istringstream lines(warnings);
         for (std::string w; std::getline(lines, w);)
             if (!w.empty()) warnAbout(w);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -556,6 +557,50 @@ TEST_F(GltfLoader, BrokenFilesAreRefusedWithTheirReason) {
         b.doc()["nodes"][child]["children"] = {child};
         b.doc()["scenes"][0]["nodes"].push_back(child);
         expectRefused(b, "is its own ancestor");
+    }
+}
+
+// tinygltf's own messages name a property, not its element: the loader adds the element's JSON
+// path, in .gltf and .glb files alike. Each file has two of the element's kind, the second wrong,
+// so that a message naming the first, or none, fails.
+TEST_F(GltfLoader, TinygltfsMessagesNameTheElementTheyAreAbout) {
+    auto refusal = [&](GltfBuilder& b, bool glb) -> std::string {
+        const fs::path file = glb ? b.writeGlb(dir_ / "broken.glb") : b.write(dir_ / "broken.gltf");
+        try {
+            load(file);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "loaded";
+    };
+    auto expectContains = [](const std::string& message, const std::string& part) {
+        EXPECT_NE(message.find(part), std::string::npos) << message << "\nexpected: " << part;
+    };
+    auto twoTriangles = [](const std::function<void(json& doc)>& breakIt) {
+        GltfBuilder b;
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}})}});
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}})}});
+        breakIt(b.doc());
+        return b;
+    };
+    for (bool glb : {false, true}) {
+        SCOPED_TRACE(glb ? ".glb" : ".gltf");
+        GltfBuilder countAsText = twoTriangles([](json& doc) { doc["accessors"][1]["count"] = "3"; });
+        expectContains(refusal(countAsText, glb), "accessors[1]: 'count' property is not a positive integer");
+        GltfBuilder noLength = twoTriangles([](json& doc) { doc["bufferViews"][1].erase("byteLength"); });
+        expectContains(refusal(noLength, glb), "bufferViews[1]: 'byteLength' property is missing.");
+        GltfBuilder noType = twoTriangles([](json& doc) { doc["accessors"][1].erase("type"); });
+        expectContains(refusal(noType, glb), "accessors[1]: 'type' property is missing.");
+        GltfBuilder badType = twoTriangles([](json& doc) { doc["accessors"][1]["type"] = "VEC7"; });
+        expectContains(refusal(badType, glb), "accessors[1]: Unsupported `type` for accessor object");
+        GltfBuilder badStride = twoTriangles([](json& doc) { doc["bufferViews"][1]["byteStride"] = 2; });
+        expectContains(refusal(badStride, glb), "bufferViews[1]: Invalid `byteStride' value");
+        GltfBuilder noAttributes = twoTriangles([](json& doc) { doc["meshes"][1]["primitives"][0].erase("attributes"); });
+        expectContains(refusal(noAttributes, glb), "meshes[1].primitives[0]: 'attributes' property is missing.");
+        GltfBuilder indexAsText = twoTriangles([](json& doc) {
+            doc["materials"] = json::array({json{{"normalTexture", {{"index", 0}}}}, json{{"normalTexture", {{"index", "0"}}}}});
+        });
+        expectContains(refusal(indexAsText, glb), "materials[1].normalTexture: 'index' property");
     }
 }
 
