@@ -1,19 +1,14 @@
 #include "scene/gltf_loader.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
-#include <limits>
 #include <map>
-#include <optional>
-#include <set>
 #include <stdexcept>
 #include <sstream>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -22,11 +17,9 @@
 
 #include "common/error.h"
 #include "common/file_extension.h"
-#include "image/image.h"
-#include "image/srgb.h"
 #include "scene/gltf_errors.h"
+#include "scene/gltf_materials.h"
 #include "scene/instances.h"
-#include "scene/mtl_material.h"
 #include "scene/quote_input.h"
 
 namespace vitrum {
@@ -43,13 +36,6 @@ glm::mat4 gltfToZUp() {
 }
 
 namespace {
-
-// The extensions whose meaning vitrum renders (docs/scene-format.md, "glTF 2.0"); a file that
-// requires any other is refused, one that only uses it is read without it, with a warning.
-const std::set<std::string> kReadExtensions = {"KHR_materials_transmission", "KHR_materials_volume",
-                                               "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_dispersion",
-                                               "KHR_lights_punctual", "KHR_texture_transform",
-                                               "KHR_materials_pbrSpecularGlossiness"};
 
 constexpr std::size_t kMaxElementsWithoutView = std::size_t(1) << 24;
 
@@ -142,15 +128,14 @@ bool keepEncodedImage(tinygltf::Image* image, const int, std::string* err, std::
     return true;
 }
 
-double numberOr(const tinygltf::Value& object, const char* key, double fallback) {
-    if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsNumber()) return fallback;
-    return object.Get(key).GetNumberAsDouble();
-}
-
 class GltfReader {
 public:
     GltfReader(Scene& scene, fs::path file, const SceneLoadOptions& load, const GltfOptions& options)
-        : scene_(scene), file_(std::move(file)), load_(load), options_(options) {}
+        : scene_(scene),
+          file_(std::move(file)),
+          load_(load),
+          options_(options),
+          materials_(scene_, model_, file_, load_.texelLimit) {}
 
     GltfResult read() {
         parse();
@@ -239,7 +224,7 @@ private:
         for (std::string w; std::getline(lines, w);)
             if (!w.empty()) warnAbout(w);
         for (const std::string& name : model_.extensionsRequired)
-            if (!kReadExtensions.count(name))
+            if (!isReadGltfExtension(name))
                 fail("requires the glTF extension " + name + ", which vitrum does not read");
     }
 
@@ -473,9 +458,8 @@ private:
             if (corners.size() % 3 != 0)
                 warnAbout(where + " has " + std::to_string(corners.size()) + " corners, not a multiple of 3: the last " +
                           std::to_string(corners.size() % 3) + " ignored");
-            const std::uint32_t material = primitive.material >= 0 ? materialIndex(primitive.material) : defaultMaterial();
-            const auto transformed = uvTransforms_.find(primitive.material);
-            const glm::dmat3* uvTransform = transformed != uvTransforms_.end() ? &transformed->second : nullptr;
+            const std::uint32_t material = materials_.sceneMaterial(primitive.material);
+            const glm::dmat3* uvTransform = materials_.uvTransform(primitive.material);
             scene_.triangles.reserve(scene_.triangles.size() + corners.size() / 3);
             for (std::size_t k = 0; k + 2 < corners.size(); k += 3) {
                 std::size_t c[3] = {corners[k], corners[k + 1], corners[k + 2]};
@@ -516,267 +500,6 @@ private:
             }
         }
         if (anyTriangle) scene_.objectNames.push_back(file_.filename().string() + "/" + name);
-    }
-
-    std::uint32_t defaultMaterial() {
-        if (!defaultMaterial_) {
-            defaultMaterial_ = std::uint32_t(scene_.materials.size());
-            scene_.materials.push_back(vitrum::defaultMaterial());
-        }
-        return *defaultMaterial_;
-    }
-
-    std::uint32_t materialIndex(int index) {
-        if (std::size_t(index) >= model_.materials.size())
-            fail("a primitive names materials[" + std::to_string(index) + "], which does not exist");
-        if (auto found = materials_.find(index); found != materials_.end()) return found->second;
-        const auto sceneIndex = std::uint32_t(scene_.materials.size());
-        scene_.materials.push_back(material(model_.materials[std::size_t(index)], index));
-        return materials_[index] = sceneIndex;
-    }
-
-    // glTF's metallic-roughness materials on the render model's (docs/scene-format.md, "glTF
-    // materials"): transmission is glass, metal a mirror, the rest the opaque dielectric.
-    Material material(const tinygltf::Material& g, int index) {
-        const std::string name = g.name.empty() ? "material" + std::to_string(index) : g.name;
-        const std::string quoted = "materials[" + std::to_string(index) + "] (" + quoteInput(name) + ")";
-        std::vector<std::string> ignored;
-        Material m;
-        m.name = name;
-        const auto& pbr = g.pbrMetallicRoughness;
-        const glm::vec3 base = pbr.baseColorFactor.size() >= 3
-                                   ? glm::vec3(glm::make_vec3(pbr.baseColorFactor.data()))
-                                   : glm::vec3(1.0f);
-        auto extension = [&](const char* key) -> const tinygltf::Value* {
-            auto found = g.extensions.find(key);
-            return found == g.extensions.end() ? nullptr : &found->second;
-        };
-        const tinygltf::Value* transmission = extension("KHR_materials_transmission");
-        const tinygltf::Value* volume = extension("KHR_materials_volume");
-        const tinygltf::Value* iorExtension = extension("KHR_materials_ior");
-        const double transmissionFactor = transmission ? numberOr(*transmission, "transmissionFactor", 0.0) : 0.0;
-        const double ior = iorExtension ? numberOr(*iorExtension, "ior", 1.5) : 1.5;
-        // KHR_materials_ior allows 0 (an infinite index) and values from 1 up; a refracting
-        // medium needs a finite one.
-        if (ior >= 1.0 && ior <= 10.0)
-            m.ior = float(ior);
-        else
-            warnAbout(quoted + " has ior " + std::to_string(ior) + "; using 1.5");
-        if (transmissionFactor >= 0.5) {
-            // Thin-walled (no volume, or thicknessFactor 0: KHR_materials_volume) is a surface
-            // with no inside; vitrum's glass is a closed mesh around a medium.
-            const double thickness = volume ? numberOr(*volume, "thicknessFactor", 0.0) : 0.0;
-            if (!(thickness > 0.0))
-                fail(quoted + " is thin-walled glass (KHR_materials_transmission without KHR_materials_volume, or "
-                              "thicknessFactor 0), which vitrum does not render: its glass is a closed mesh "
-                              "around a medium. Give the material KHR_materials_volume with a thicknessFactor > 0");
-            m.model = MaterialModel::Glass;
-            // KHR_materials_dispersion: dispersion = 20 / V_d, 0 for none.
-            if (const tinygltf::Value* dispersion = extension("KHR_materials_dispersion")) {
-                const double value = numberOr(*dispersion, "dispersion", 0.0);
-                if (value > 0.0 && std::isfinite(value)) m.abbe = float(20.0 / value);
-            }
-            if (transmissionFactor < 1.0)
-                ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 1)");
-            if (base != glm::vec3(1.0f))
-                ignored.push_back("baseColorFactor (glass is tinted by KHR_materials_volume's attenuation only)");
-            const double distance = numberOr(*volume, "attenuationDistance", std::numeric_limits<double>::infinity());
-            if (std::isfinite(distance) && distance > 0.0) {
-                glm::dvec3 colour(1.0);
-                const tinygltf::Value& c = volume->Get("attenuationColor");
-                if (c.IsArray() && c.ArrayLen() == 3)
-                    for (int i = 0; i < 3; ++i) colour[i] = c.Get(i).IsNumber() ? c.Get(i).GetNumberAsDouble() : 1.0;
-                // mu = -ln(colour) / distance (KHR_materials_volume); a colour of 0 would be an
-                // infinite mu: the smallest normal float keeps it finite and black.
-                for (int i = 0; i < 3; ++i)
-                    m.attenuation[i] = float(-std::log(std::clamp(colour[i], double(std::numeric_limits<float>::min()), 1.0)) / distance);
-            }
-            if (pbr.baseColorTexture.index >= 0) ignored.push_back("baseColorTexture");
-            if (extension("KHR_materials_pbrSpecularGlossiness")) ignored.push_back("KHR_materials_pbrSpecularGlossiness");
-        } else if (const tinygltf::Value* specularGlossiness = extension("KHR_materials_pbrSpecularGlossiness")) {
-            specularGlossinessMaterial(*specularGlossiness, index, quoted, m, ignored);
-        } else if (pbr.metallicFactor >= 0.5) {
-            m.model = MaterialModel::Mirror;
-            m.specular = base;
-            if (pbr.metallicFactor < 1.0) ignored.push_back("metallicFactor " + std::to_string(pbr.metallicFactor) + " (rendered as 1)");
-            if (pbr.roughnessFactor > 0.0) ignored.push_back("roughnessFactor (a metal is a perfect mirror)");
-            if (pbr.baseColorTexture.index >= 0) ignored.push_back("baseColorTexture");
-        } else if (const tinygltf::Value* specular = extension("KHR_materials_specular");
-                   specular && numberOr(*specular, "specularFactor", 1.0) == 0.0) {
-            // No specular layer at all (KHR_materials_specular): the diffuse base alone, Lambert.
-            m.model = MaterialModel::Lambert;
-            m.diffuse = base;
-            if (pbr.baseColorTexture.index >= 0) m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, index, quoted, ignored);
-        } else {
-            m.model = MaterialModel::Phong;
-            m.diffuse = base;
-            // Ks: the highlight's peak is the specular layer's reflectance at normal incidence,
-            // min(F0(ior) * specularColorFactor, 1) * specularFactor (KHR_materials_specular), F0
-            // against air. Ns from roughness by Walter et al. 2007 ("Microfacet Models for
-            // Refraction", eq. 30): Ns = 2 / alpha^2 - 2, alpha = roughness^2, within [1, 10000].
-            const float f0 = (m.ior - 1.0f) * (m.ior - 1.0f) / ((m.ior + 1.0f) * (m.ior + 1.0f));
-            glm::vec3 colour(1.0f);
-            float factor = 1.0f;
-            if (const tinygltf::Value* specular = extension("KHR_materials_specular")) {
-                factor = float(numberOr(*specular, "specularFactor", 1.0));
-                const tinygltf::Value& c = specular->Get("specularColorFactor");
-                if (c.IsArray() && c.ArrayLen() == 3)
-                    for (int i = 0; i < 3; ++i) colour[i] = c.Get(i).IsNumber() ? float(c.Get(i).GetNumberAsDouble()) : 1.0f;
-                if (specular->Has("specularTexture") || specular->Has("specularColorTexture"))
-                    ignored.push_back("KHR_materials_specular's textures");
-            }
-            m.specular = glm::max(glm::min(f0 * colour, glm::vec3(1.0f)) * factor, glm::vec3(0.0f));
-            const double alpha = pbr.roughnessFactor * pbr.roughnessFactor;
-            m.shininess = alpha > 0.0 ? float(std::clamp(2.0 / (alpha * alpha) - 2.0, 1.0, 10000.0)) : 10000.0f;
-            if (pbr.metallicFactor > 0.0) ignored.push_back("metallicFactor " + std::to_string(pbr.metallicFactor) + " (rendered as 0)");
-            if (transmissionFactor > 0.0) ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 0)");
-            if (pbr.baseColorTexture.index >= 0) m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, index, quoted, ignored);
-        }
-        if (pbr.metallicRoughnessTexture.index >= 0) ignored.push_back("metallicRoughnessTexture");
-        if (g.normalTexture.index >= 0) ignored.push_back("normalTexture");
-        if (g.occlusionTexture.index >= 0) ignored.push_back("occlusionTexture");
-        if (g.emissiveTexture.index >= 0 ||
-            (g.emissiveFactor.size() == 3 && (g.emissiveFactor[0] > 0 || g.emissiveFactor[1] > 0 || g.emissiveFactor[2] > 0)))
-            ignored.push_back("emission");
-        if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty()) ignored.push_back("alphaMode " + g.alphaMode);
-        for (const auto& [key, value] : g.extensions)
-            if (!kReadExtensions.count(key)) ignored.push_back(key);
-        if (!ignored.empty()) {
-            std::string list;
-            for (const std::string& item : ignored) list += (list.empty() ? "" : ", ") + item;
-            warnAbout(quoted + ": ignored: " + list);
-        }
-        return m;
-    }
-
-    // KHR_materials_pbrSpecularGlossiness (archived, but what assimp writes), which replaces the
-    // metallic-roughness model where present: the opaque dielectric with Kd = diffuseFactor (times
-    // diffuseTexture), Ks = specularFactor (the reflectance at normal incidence, the highlight's
-    // peak) and Ns from roughness = 1 - glossinessFactor as the metallic-roughness mapping takes it;
-    // Lambert where specularFactor is 0 (no specular layer).
-    void specularGlossinessMaterial(const tinygltf::Value& sg, int index, const std::string& quoted, Material& m,
-                                    std::vector<std::string>& ignored) {
-        auto factor = [&](const char* key, int count, glm::vec4 fallback) {
-            const tinygltf::Value& v = sg.Get(key);
-            if (!sg.Has(key)) return fallback;
-            if (!v.IsArray() || v.ArrayLen() != std::size_t(count))
-                fail(quoted + ": KHR_materials_pbrSpecularGlossiness's " + key + " is not " + std::to_string(count) + " numbers");
-            glm::vec4 out = fallback;
-            for (int i = 0; i < count; ++i) {
-                if (!v.Get(i).IsNumber()) fail(quoted + ": KHR_materials_pbrSpecularGlossiness's " + key + " is not numbers");
-                out[i] = float(std::clamp(v.Get(i).GetNumberAsDouble(), 0.0, 1.0));
-            }
-            return out;
-        };
-        const glm::vec3 diffuse(factor("diffuseFactor", 4, glm::vec4(1.0f)));
-        const glm::vec3 specular(factor("specularFactor", 3, glm::vec4(1.0f)));
-        const double glossiness = std::clamp(numberOr(sg, "glossinessFactor", 1.0), 0.0, 1.0);
-        m.diffuse = diffuse;
-        if (specular == glm::vec3(0.0f)) {
-            m.model = MaterialModel::Lambert;
-        } else {
-            m.model = MaterialModel::Phong;
-            m.specular = specular;
-            const double roughness = 1.0 - glossiness, alpha = roughness * roughness;
-            m.shininess = alpha > 0.0 ? float(std::clamp(2.0 / (alpha * alpha) - 2.0, 1.0, 10000.0)) : 10000.0f;
-        }
-        if (sg.Has("diffuseTexture")) {
-            const tinygltf::Value& t = sg.Get("diffuseTexture");
-            tinygltf::TextureInfo info;
-            info.index = t.Has("index") && t.Get("index").IsNumber() ? t.Get("index").GetNumberAsInt() : -1;
-            info.texCoord = t.Has("texCoord") && t.Get("texCoord").IsNumber() ? t.Get("texCoord").GetNumberAsInt() : 0;
-            if (t.Has("extensions") && t.Get("extensions").IsObject())
-                for (const std::string& key : t.Get("extensions").Keys()) info.extensions[key] = t.Get("extensions").Get(key);
-            m.diffuseTexture = baseColorTexture(info, diffuse, index, quoted, ignored);
-        }
-        if (sg.Has("specularGlossinessTexture")) ignored.push_back("specularGlossinessTexture");
-    }
-
-    // The render model's opaque diffuse colour is the texel alone (Kd or map_Kd): a factor other
-    // than white is multiplied into a copy of the image, one per image and factor.
-    // KHR_texture_transform moves its coordinates (uvTransforms_, applied as the material's
-    // triangles are made).
-    int baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3 factor, int material, const std::string& quoted,
-                         std::vector<std::string>& ignored) {
-        int texCoord = info.texCoord;
-        for (const auto& [key, value] : info.extensions) {
-            if (key != "KHR_texture_transform") {
-                ignored.push_back("baseColorTexture's " + key);
-                continue;
-            }
-            uvTransforms_[material] = textureTransform(value, quoted);
-            if (value.Has("texCoord") && value.Get("texCoord").IsNumber()) texCoord = value.Get("texCoord").GetNumberAsInt();
-        }
-        if (texCoord != 0) ignored.push_back("baseColorTexture's TEXCOORD_" + std::to_string(texCoord) + " (TEXCOORD_0 used)");
-        if (std::size_t(info.index) >= model_.textures.size()) fail(quoted + " names textures[" + std::to_string(info.index) + "], which does not exist");
-        const int source = model_.textures[std::size_t(info.index)].source;
-        if (source < 0 || std::size_t(source) >= model_.images.size()) {
-            warnAbout(quoted + ": its texture has no image it can read; using baseColorFactor");
-            return -1;
-        }
-        const auto key = std::make_tuple(source, factor.x, factor.y, factor.z);
-        if (auto found = textures_.find(key); found != textures_.end()) return found->second;
-        const tinygltf::Image& image = model_.images[std::size_t(source)];
-        const fs::path name = image.uri.empty() || image.uri.starts_with("data:")
-                                  ? fs::path(file_.string() + ": image " + std::to_string(source))
-                                  : file_.parent_path() / uriPath(image.uri);
-        int index = -1;
-        try {
-            Image decoded = image.as_is ? decodeImage(name, image.image, load_.texelLimit.leftAfter(scene_))
-                                        : readImage(name, load_.texelLimit.leftAfter(scene_));
-            for (glm::vec3& texel : decoded.pixels) texel *= factor;
-            index = int(scene_.textures.size());
-            scene_.textures.push_back(Texture{name, int(decoded.width), int(decoded.height), std::move(decoded.pixels)});
-        } catch (const ImageTooLarge& e) {
-            fail(quoted + ": baseColorTexture " + e.what());
-        } catch (const InputError& e) {
-            // Refused, unlike an MTL's map_Kd: a glTF's images are part of the asset, and a glass
-            // set rendered without its labels is not what its author exported (issue 50).
-            fail(quoted + ": its baseColorTexture's image cannot be read: " + e.what());
-        }
-        return textures_[key] = index;
-    }
-
-    // KHR_texture_transform: uv' = T R S uv in glTF's texture coordinates (v down), with T the
-    // offset, R the rotation (radians, counter-clockwise seen on the image) and S the scale, as the
-    // extension's specification writes the matrix.
-    glm::dmat3 textureTransform(const tinygltf::Value& transform, const std::string& quoted) {
-        auto pair = [&](const char* key, glm::dvec2 fallback) {
-            const tinygltf::Value& v = transform.Get(key);
-            if (!transform.Has(key)) return fallback;
-            if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
-                fail(quoted + ": KHR_texture_transform's " + key + " is not two numbers");
-            return glm::dvec2(v.Get(0).GetNumberAsDouble(), v.Get(1).GetNumberAsDouble());
-        };
-        const glm::dvec2 offset = pair("offset", glm::dvec2(0.0)), scale = pair("scale", glm::dvec2(1.0));
-        double rotation = 0.0;
-        if (transform.Has("rotation")) {
-            if (!transform.Get("rotation").IsNumber()) fail(quoted + ": KHR_texture_transform's rotation is not a number");
-            rotation = transform.Get("rotation").GetNumberAsDouble();
-        }
-        if (!std::isfinite(offset.x + offset.y + scale.x + scale.y + rotation))
-            fail(quoted + ": KHR_texture_transform has a number that is not finite");
-        const double c = std::cos(rotation), s = std::sin(rotation);
-        // Column-major: the specification's rows (1 0 ox; 0 1 oy), (c s 0; -s c 0), (sx 0; 0 sy).
-        const glm::dmat3 t(1, 0, 0, 0, 1, 0, offset.x, offset.y, 1);
-        const glm::dmat3 r(c, -s, 0, s, c, 0, 0, 0, 1);
-        const glm::dmat3 sc(scale.x, 0, 0, 0, scale.y, 0, 0, 0, 1);
-        return t * r * sc;
-    }
-
-    // A relative URI as a path: percent-escapes decoded (RFC 3986), '/' as separator.
-    static fs::path uriPath(const std::string& uri) {
-        std::string path;
-        for (std::size_t i = 0; i < uri.size(); ++i) {
-            if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-                std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-                path += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-                i += 2;
-            } else {
-                path += uri[i];
-            }
-        }
-        return fs::path(path);
     }
 
     // KHR_lights_punctual: a point light is colour times intensity with the inverse-square
@@ -864,10 +587,7 @@ private:
     const SceneLoadOptions& load_;
     GltfOptions options_;
     tinygltf::Model model_;
-    std::map<int, std::uint32_t> materials_;
-    std::map<int, glm::dmat3> uvTransforms_;  // by glTF material: its baseColorTexture's KHR_texture_transform
-    std::map<std::tuple<int, float, float, float>, int> textures_;
-    std::optional<std::uint32_t> defaultMaterial_;
+    GltfMaterials materials_;
     std::size_t trianglesToMake_ = 0, trianglesMade_ = 0;
     bool warnedSkin_ = false, warnedMorph_ = false;
 };

@@ -1,0 +1,66 @@
+// glTF's materials on the render model's (docs/scene-format.md, "Materials" under "glTF 2.0"): transmission
+// with a volume is glass, metal a mirror, the rest the opaque dielectric (or Lambert without a
+// specular layer); what a material has that the render model has no place for is listed in one
+// warning a material. Base-colour textures are decoded as MTL textures are.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+#include "scene/texel_limit.h"
+#include "scene/tinygltf.h"
+
+namespace vitrum {
+
+// The extensions whose meaning vitrum renders (docs/scene-format.md, "glTF 2.0"): the materials'
+// here, KHR_texture_transform and KHR_lights_punctual. A file that requires any other is refused,
+// one that only uses it is read without it, with a warning.
+bool isReadGltfExtension(const std::string& name);
+
+class GltfMaterials {
+public:
+    // Materials go into `scene` as primitives name them; `model` is the file `file` as tinygltf read it.
+    GltfMaterials(Scene& scene, const tinygltf::Model& model, std::filesystem::path file, const TexelLimit& texelLimit)
+        : scene_(scene), model_(model), file_(std::move(file)), texelLimit_(texelLimit) {}
+
+    // The scene's material for the file's materials[index], added at its first use; for -1 (a
+    // primitive that names none), the render model's default material. Throws InputError naming
+    // the material where it cannot be rendered (thin-walled glass, an unreadable texture).
+    std::uint32_t sceneMaterial(int index);
+    // The KHR_texture_transform of materials[index]'s baseColorTexture (glTF's texture
+    // coordinates, v down), once sceneMaterial(index) has made it; null where it has none.
+    const glm::dmat3* uvTransform(int index) const {
+        const auto found = uvTransforms_.find(index);
+        return found == uvTransforms_.end() ? nullptr : &found->second;
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& message) const;
+    void warnAbout(const std::string& message) const;
+    std::uint32_t defaultMaterial();
+    Material material(const tinygltf::Material& g, int index);
+    void specularGlossinessMaterial(const tinygltf::Value& sg, int index, const std::string& quoted, Material& m,
+                                    std::vector<std::string>& ignored);
+    int baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3 factor, int material, const std::string& quoted,
+                         std::vector<std::string>& ignored);
+    glm::dmat3 textureTransform(const tinygltf::Value& transform, const std::string& quoted);
+
+    Scene& scene_;
+    const tinygltf::Model& model_;
+    std::filesystem::path file_;
+    const TexelLimit& texelLimit_;
+    std::map<int, std::uint32_t> materials_;  // by glTF material
+    std::map<int, glm::dmat3> uvTransforms_;  // by glTF material: its baseColorTexture's KHR_texture_transform
+    std::map<std::tuple<int, float, float, float>, int> textures_;  // by image and factor
+    std::optional<std::uint32_t> defaultMaterial_;
+};
+
+}  // namespace vitrum
