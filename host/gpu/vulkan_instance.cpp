@@ -51,15 +51,18 @@ VulkanInstance::VulkanInstance(const char* program, bool validation) : program_(
     };
     const VkResult result = vkCreateInstance(&info, nullptr, &instance_);
     if (result == VK_ERROR_LAYER_NOT_PRESENT)
-        throw VulkanError(result, "VITRUM_VALIDATION is set but the Khronos validation layer is not installed "
-                                  "(Debian package vulkan-validationlayers)");
+        throw VulkanError(result,
+                          "VITRUM_VALIDATION is set but the Khronos validation layer is not installed "
+                          "(Debian package vulkan-validationlayers)");
     VK_CHECK(result);
     if (!validation) return;
     try {
         const VkDebugUtilsMessengerCreateInfoEXT messengerInfo{
             .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
-            .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
-            .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+            .messageSeverity =
+                VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+            .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                           VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                            VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
             .pfnUserCallback = onValidationMessage,
             .pUserData = const_cast<char*>(program_),

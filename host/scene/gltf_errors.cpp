@@ -85,7 +85,8 @@ std::string firstElement(const json& doc, const std::function<bool(const Element
                     return true;
                 }
                 for (const auto& [key, member] : value.items())
-                    if (key != "extras" && visit(member, path.empty() ? key : path + "." + key, kind.empty() ? key : kind + "." + key))
+                    if (key != "extras" &&
+                        visit(member, path.empty() ? key : path + "." + key, kind.empty() ? key : kind + "." + key))
                         return true;
             } else if (value.is_array()) {
                 for (std::size_t i = 0; i < value.size(); ++i)
@@ -123,10 +124,12 @@ std::string findElement(const fs::path& file, const json& doc, const std::string
     if (std::regex_search(line, m, std::regex("^File not found : (.*)$"))) {
         const std::string missing = m[1];
         return firstElement(doc, [&](const Element& e) {
-            if ((e.kind != "buffers" && e.kind != "images") || !e.object.contains("uri") || !e.object["uri"].is_string())
+            if ((e.kind != "buffers" && e.kind != "images") || !e.object.contains("uri") ||
+                !e.object["uri"].is_string())
                 return false;
             const std::string uri = e.object["uri"].get<std::string>();
-            return uri == missing || (file.parent_path() / uri).lexically_normal() == fs::path(missing).lexically_normal();
+            return uri == missing ||
+                   (file.parent_path() / uri).lexically_normal() == fs::path(missing).lexically_normal();
         });
     }
     if (std::regex_search(line, m, std::regex("^'([^']+)' property is missing"))) {
@@ -137,14 +140,14 @@ std::string findElement(const fs::path& file, const json& doc, const std::string
                    !e.object.contains(property);
         });
     }
-    if (std::regex_search(line, m, std::regex("^'([^']+)' (?:property|value) is not (a positive integer|an integer type|"
-                                              "a number type|a number|an array|a bool type|a string type|an object|"
-                                              "a JSON object)"))) {
+    if (std::regex_search(line, m,
+                          std::regex("^'([^']+)' (?:property|value) is not (a positive integer|an integer type|"
+                                     "a number type|a number|an array|a bool type|a string type|an object|"
+                                     "a JSON object)"))) {
         const std::string property = m[1];
         const std::string kind = m[2];
-        return firstElement(doc, [&](const Element& e) {
-            return e.object.contains(property) && !isOfKind(e.object[property], kind);
-        });
+        return firstElement(
+            doc, [&](const Element& e) { return e.object.contains(property) && !isOfKind(e.object[property], kind); });
     }
     if (std::regex_search(line, std::regex("^Unsupported `type` for accessor object"))) {
         static const std::set<std::string> types = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
@@ -157,8 +160,8 @@ std::string findElement(const fs::path& file, const json& doc, const std::string
         return firstElement(doc, [&](const Element& e) {
             const json* type = e.object.contains("componentType") ? &e.object["componentType"] : nullptr;
             return e.kind == "accessors" && type &&
-                   !(type->is_number_unsigned() && type->get<std::uint64_t>() >= 5120 && type->get<std::uint64_t>() <= 5126 &&
-                     type->get<std::uint64_t>() != 5124);
+                   !(type->is_number_unsigned() && type->get<std::uint64_t>() >= 5120 &&
+                     type->get<std::uint64_t>() <= 5126 && type->get<std::uint64_t>() != 5124);
         });
     }
     if (std::regex_search(line, std::regex("^Invalid `byteStride' value"))) {

@@ -42,9 +42,9 @@ fs::path uriPath(const std::string& uri) {
 
 bool isReadGltfExtension(const std::string& name) {
     static const std::set<std::string> read = {"KHR_materials_transmission", "KHR_materials_volume",
-                                               "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_dispersion",
-                                               "KHR_lights_punctual", "KHR_texture_transform",
-                                               "KHR_materials_pbrSpecularGlossiness"};
+                                               "KHR_materials_ior",          "KHR_materials_specular",
+                                               "KHR_materials_dispersion",   "KHR_lights_punctual",
+                                               "KHR_texture_transform",      "KHR_materials_pbrSpecularGlossiness"};
     return read.count(name) != 0;
 }
 
@@ -78,9 +78,8 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
     Material m;
     m.name = name;
     const auto& pbr = g.pbrMetallicRoughness;
-    const glm::vec3 base = pbr.baseColorFactor.size() >= 3
-                               ? glm::vec3(glm::make_vec3(pbr.baseColorFactor.data()))
-                               : glm::vec3(1.0f);
+    const glm::vec3 base =
+        pbr.baseColorFactor.size() >= 3 ? glm::vec3(glm::make_vec3(pbr.baseColorFactor.data())) : glm::vec3(1.0f);
     auto extension = [&](const char* key) -> const tinygltf::Value* {
         auto found = g.extensions.find(key);
         return found == g.extensions.end() ? nullptr : &found->second;
@@ -101,9 +100,10 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
         // with no inside; vitrum's glass is a closed mesh around a medium.
         const double thickness = volume ? numberOr(*volume, "thicknessFactor", 0.0) : 0.0;
         if (!(thickness > 0.0))
-            fail(quoted + " is thin-walled glass (KHR_materials_transmission without KHR_materials_volume, or "
-                          "thicknessFactor 0), which vitrum does not render: its glass is a closed mesh "
-                          "around a medium. Give the material KHR_materials_volume with a thicknessFactor > 0");
+            fail(quoted +
+                 " is thin-walled glass (KHR_materials_transmission without KHR_materials_volume, or "
+                 "thicknessFactor 0), which vitrum does not render: its glass is a closed mesh "
+                 "around a medium. Give the material KHR_materials_volume with a thicknessFactor > 0");
         m.model = MaterialModel::Glass;
         // KHR_materials_dispersion: dispersion = 20 / V_d, 0 for none.
         if (const tinygltf::Value* dispersion = extension("KHR_materials_dispersion")) {
@@ -123,7 +123,8 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
             // mu = -ln(colour) / distance (KHR_materials_volume); a colour of 0 would be an
             // infinite mu: the smallest normal float keeps it finite and black.
             for (int i = 0; i < 3; ++i)
-                m.attenuation[i] = float(-std::log(std::clamp(colour[i], double(std::numeric_limits<float>::min()), 1.0)) / distance);
+                m.attenuation[i] =
+                    float(-std::log(std::clamp(colour[i], double(std::numeric_limits<float>::min()), 1.0)) / distance);
         }
         if (pbr.baseColorTexture.index >= 0) ignored.push_back("baseColorTexture");
         if (extension("KHR_materials_pbrSpecularGlossiness")) ignored.push_back("KHR_materials_pbrSpecularGlossiness");
@@ -132,7 +133,8 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
     } else if (pbr.metallicFactor >= 0.5) {
         m.model = MaterialModel::Mirror;
         m.specular = base;
-        if (pbr.metallicFactor < 1.0) ignored.push_back("metallicFactor " + std::to_string(pbr.metallicFactor) + " (rendered as 1)");
+        if (pbr.metallicFactor < 1.0)
+            ignored.push_back("metallicFactor " + std::to_string(pbr.metallicFactor) + " (rendered as 1)");
         if (pbr.roughnessFactor > 0.0) ignored.push_back("roughnessFactor (a metal is a perfect mirror)");
         if (pbr.baseColorTexture.index >= 0) ignored.push_back("baseColorTexture");
     } else if (const tinygltf::Value* specular = extension("KHR_materials_specular");
@@ -140,7 +142,8 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
         // No specular layer at all (KHR_materials_specular): the diffuse base alone, Lambert.
         m.model = MaterialModel::Lambert;
         m.diffuse = base;
-        if (pbr.baseColorTexture.index >= 0) m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, index, quoted, ignored);
+        if (pbr.baseColorTexture.index >= 0)
+            m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, index, quoted, ignored);
     } else {
         m.model = MaterialModel::Phong;
         m.diffuse = base;
@@ -155,22 +158,27 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
             factor = float(numberOr(*specular, "specularFactor", 1.0));
             const tinygltf::Value& c = specular->Get("specularColorFactor");
             if (c.IsArray() && c.ArrayLen() == 3)
-                for (int i = 0; i < 3; ++i) colour[i] = c.Get(i).IsNumber() ? float(c.Get(i).GetNumberAsDouble()) : 1.0f;
+                for (int i = 0; i < 3; ++i)
+                    colour[i] = c.Get(i).IsNumber() ? float(c.Get(i).GetNumberAsDouble()) : 1.0f;
             if (specular->Has("specularTexture") || specular->Has("specularColorTexture"))
                 ignored.push_back("KHR_materials_specular's textures");
         }
         m.specular = glm::max(glm::min(f0 * colour, glm::vec3(1.0f)) * factor, glm::vec3(0.0f));
         const double alpha = pbr.roughnessFactor * pbr.roughnessFactor;
         m.shininess = alpha > 0.0 ? float(std::clamp(2.0 / (alpha * alpha) - 2.0, 1.0, 10000.0)) : 10000.0f;
-        if (pbr.metallicFactor > 0.0) ignored.push_back("metallicFactor " + std::to_string(pbr.metallicFactor) + " (rendered as 0)");
-        if (transmissionFactor > 0.0) ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 0)");
-        if (pbr.baseColorTexture.index >= 0) m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, index, quoted, ignored);
+        if (pbr.metallicFactor > 0.0)
+            ignored.push_back("metallicFactor " + std::to_string(pbr.metallicFactor) + " (rendered as 0)");
+        if (transmissionFactor > 0.0)
+            ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 0)");
+        if (pbr.baseColorTexture.index >= 0)
+            m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, index, quoted, ignored);
     }
     if (pbr.metallicRoughnessTexture.index >= 0) ignored.push_back("metallicRoughnessTexture");
     if (g.normalTexture.index >= 0) ignored.push_back("normalTexture");
     if (g.occlusionTexture.index >= 0) ignored.push_back("occlusionTexture");
     if (g.emissiveTexture.index >= 0 ||
-        (g.emissiveFactor.size() == 3 && (g.emissiveFactor[0] > 0 || g.emissiveFactor[1] > 0 || g.emissiveFactor[2] > 0)))
+        (g.emissiveFactor.size() == 3 &&
+         (g.emissiveFactor[0] > 0 || g.emissiveFactor[1] > 0 || g.emissiveFactor[2] > 0)))
         ignored.push_back("emission");
     if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty()) ignored.push_back("alphaMode " + g.alphaMode);
     for (const auto& [key, value] : g.extensions)
@@ -194,10 +202,12 @@ void GltfMaterials::specularGlossinessMaterial(const tinygltf::Value& sg, int in
         const tinygltf::Value& v = sg.Get(key);
         if (!sg.Has(key)) return fallback;
         if (!v.IsArray() || v.ArrayLen() != std::size_t(count))
-            fail(quoted + ": KHR_materials_pbrSpecularGlossiness's " + key + " is not " + std::to_string(count) + " numbers");
+            fail(quoted + ": KHR_materials_pbrSpecularGlossiness's " + key + " is not " + std::to_string(count) +
+                 " numbers");
         glm::vec4 out = fallback;
         for (int i = 0; i < count; ++i) {
-            if (!v.Get(i).IsNumber()) fail(quoted + ": KHR_materials_pbrSpecularGlossiness's " + key + " is not numbers");
+            if (!v.Get(i).IsNumber())
+                fail(quoted + ": KHR_materials_pbrSpecularGlossiness's " + key + " is not numbers");
             out[i] = float(std::clamp(v.Get(i).GetNumberAsDouble(), 0.0, 1.0));
         }
         return out;
@@ -220,7 +230,8 @@ void GltfMaterials::specularGlossinessMaterial(const tinygltf::Value& sg, int in
         info.index = t.Has("index") && t.Get("index").IsNumber() ? t.Get("index").GetNumberAsInt() : -1;
         info.texCoord = t.Has("texCoord") && t.Get("texCoord").IsNumber() ? t.Get("texCoord").GetNumberAsInt() : 0;
         if (t.Has("extensions") && t.Get("extensions").IsObject())
-            for (const std::string& key : t.Get("extensions").Keys()) info.extensions[key] = t.Get("extensions").Get(key);
+            for (const std::string& key : t.Get("extensions").Keys())
+                info.extensions[key] = t.Get("extensions").Get(key);
         m.diffuseTexture = baseColorTexture(info, diffuse, index, quoted, ignored);
     }
     if (sg.Has("specularGlossinessTexture")) ignored.push_back("specularGlossinessTexture");
@@ -239,10 +250,13 @@ int GltfMaterials::baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3
             continue;
         }
         uvTransforms_[material] = textureTransform(value, quoted);
-        if (value.Has("texCoord") && value.Get("texCoord").IsNumber()) texCoord = value.Get("texCoord").GetNumberAsInt();
+        if (value.Has("texCoord") && value.Get("texCoord").IsNumber())
+            texCoord = value.Get("texCoord").GetNumberAsInt();
     }
-    if (texCoord != 0) ignored.push_back("baseColorTexture's TEXCOORD_" + std::to_string(texCoord) + " (TEXCOORD_0 used)");
-    if (std::size_t(info.index) >= model_.textures.size()) fail(quoted + " names textures[" + std::to_string(info.index) + "], which does not exist");
+    if (texCoord != 0)
+        ignored.push_back("baseColorTexture's TEXCOORD_" + std::to_string(texCoord) + " (TEXCOORD_0 used)");
+    if (std::size_t(info.index) >= model_.textures.size())
+        fail(quoted + " names textures[" + std::to_string(info.index) + "], which does not exist");
     const int source = model_.textures[std::size_t(info.index)].source;
     if (source < 0 || std::size_t(source) >= model_.images.size()) {
         warnAbout(quoted + ": its texture has no image it can read; using baseColorFactor");
