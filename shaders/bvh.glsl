@@ -137,8 +137,9 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     float tMin = st.traversal.tMin;
     vec3 direction = st.traversal.direction;
     float tMax = st.traversal.tMax;
-    // In an instance's mesh (resumed there), the ray in its space and its objects' first.
-    uint instance = kInstancing ? st.traversal.instance : kNoInstance;
+    // In an instance's mesh (resumed there), the ray in its space and its objects' first. Only
+    // the resumable kernel resumes a traversal (trace.comp): every other begins outside instances.
+    uint instance = kInstancing && kResumable ? st.traversal.instance : kNoInstance;
     uint closestInstance = st.traversal.closestInstance;
     uint contactInstance = st.candidates.contactInstance;
     uint leavingInstance = st.candidates.leavingInstance;
