@@ -8,7 +8,6 @@
 #include <optional>
 #include <regex>
 #include <set>
-#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -181,9 +180,11 @@ std::string findElement(const fs::path& file, const json& doc, const std::string
 }  // namespace
 
 std::string describeGltfErrors(const fs::path& file, const std::string& errors) {
-    if (errors.find_first_not_of(" \n") == std::string::npos) return "unreadable glTF";
-    std::string first = errors.substr(0, errors.find('\n'));
-    std::string rest = errors.substr(std::min(errors.size(), first.size() + 1));
+    const std::size_t begin = errors.find_first_not_of(" \n");
+    if (begin == std::string::npos) return "unreadable glTF";
+    const std::size_t end = std::min(errors.find('\n', begin), errors.size());
+    std::string first = errors.substr(begin, end - begin);
+    std::string rest = errors.substr(std::min(errors.size(), end + 1));
     std::replace(rest.begin(), rest.end(), '\n', ' ');
     rest.erase(rest.find_last_not_of(' ') + 1);
     const std::optional<json> doc = readDocument(file);
