@@ -19,11 +19,13 @@ void adviseHugePages(void* block, std::size_t bytes) {
     if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
 }
 
+#ifndef VITRUM_SANITIZED_ALLOCATOR
 namespace {
 // glibc's own initial values (mallopt(3)).
 constexpr int kDefaultTrimThreshold = 128 << 10;
 constexpr int kDefaultTopPad = 128 << 10;
 }  // namespace
+#endif
 
 HugePageHeap::HugePageHeap() {
 #ifndef VITRUM_SANITIZED_ALLOCATOR
