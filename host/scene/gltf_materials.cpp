@@ -18,11 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-double numberOr(const tinygltf::Value& object, const char* key, double fallback) {
-    if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsNumber()) return fallback;
-    return object.Get(key).GetNumberAsDouble();
-}
-
 // A relative URI as a path: percent-escapes decoded (RFC 3986), '/' as separator.
 fs::path uriPath(const std::string& uri) {
     std::string path;
@@ -50,6 +45,25 @@ bool isReadGltfExtension(const std::string& name) {
 
 void GltfMaterials::fail(const std::string& message) const { throw inputError(file_, 0, message); }
 void GltfMaterials::warnAbout(const std::string& message) const { warn(file_.string() + ": " + message); }
+
+// tinygltf passes an extension's values on unchecked (it keeps only extensions that are objects):
+// a "transmissionFactor": "1" read as absent would render glass as plastic without a word, so a
+// value of the wrong type is refused.
+double GltfMaterials::extensionNumber(const tinygltf::Value& extension, const char* name, const char* key,
+                                      double fallback, const std::string& quoted) const {
+    if (!extension.Has(key)) return fallback;
+    if (!extension.Get(key).IsNumber()) fail(quoted + ": " + name + "'s " + key + " is not a number");
+    return extension.Get(key).GetNumberAsDouble();
+}
+
+glm::dvec3 GltfMaterials::extensionColour(const tinygltf::Value& extension, const char* name, const char* key,
+                                          glm::dvec3 fallback, const std::string& quoted) const {
+    if (!extension.Has(key)) return fallback;
+    const tinygltf::Value& c = extension.Get(key);
+    if (!c.IsArray() || c.ArrayLen() != 3 || !c.Get(0).IsNumber() || !c.Get(1).IsNumber() || !c.Get(2).IsNumber())
+        fail(quoted + ": " + name + "'s " + key + " is not three numbers");
+    return {c.Get(0).GetNumberAsDouble(), c.Get(1).GetNumberAsDouble(), c.Get(2).GetNumberAsDouble()};
+}
 
 std::uint32_t GltfMaterials::defaultMaterial() {
     if (!defaultMaterial_) {
@@ -87,8 +101,10 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
     const tinygltf::Value* transmission = extension("KHR_materials_transmission");
     const tinygltf::Value* volume = extension("KHR_materials_volume");
     const tinygltf::Value* iorExtension = extension("KHR_materials_ior");
-    const double transmissionFactor = transmission ? numberOr(*transmission, "transmissionFactor", 0.0) : 0.0;
-    const double ior = iorExtension ? numberOr(*iorExtension, "ior", 1.5) : 1.5;
+    const double transmissionFactor =
+        transmission ? extensionNumber(*transmission, "KHR_materials_transmission", "transmissionFactor", 0.0, quoted)
+                     : 0.0;
+    const double ior = iorExtension ? extensionNumber(*iorExtension, "KHR_materials_ior", "ior", 1.5, quoted) : 1.5;
     // KHR_materials_ior allows 0 (an infinite index) and values from 1 up; a refracting
     // medium needs a finite one.
     if (ior >= 1.0 && ior <= 10.0)
@@ -98,7 +114,8 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
     if (transmissionFactor >= 0.5) {
         // Thin-walled (no volume, or thicknessFactor 0: KHR_materials_volume) is a surface
         // with no inside; vitrum's glass is a closed mesh around a medium.
-        const double thickness = volume ? numberOr(*volume, "thicknessFactor", 0.0) : 0.0;
+        const double thickness =
+            volume ? extensionNumber(*volume, "KHR_materials_volume", "thicknessFactor", 0.0, quoted) : 0.0;
         if (!(thickness > 0.0))
             fail(quoted +
                  " is thin-walled glass (KHR_materials_transmission without KHR_materials_volume, or "
@@ -107,19 +124,18 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
         m.model = MaterialModel::Glass;
         // KHR_materials_dispersion: dispersion = 20 / V_d, 0 for none.
         if (const tinygltf::Value* dispersion = extension("KHR_materials_dispersion")) {
-            const double value = numberOr(*dispersion, "dispersion", 0.0);
+            const double value = extensionNumber(*dispersion, "KHR_materials_dispersion", "dispersion", 0.0, quoted);
             if (value > 0.0 && std::isfinite(value)) m.abbe = float(20.0 / value);
         }
         if (transmissionFactor < 1.0)
             ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 1)");
         if (base != glm::vec3(1.0f))
             ignored.push_back("baseColorFactor (glass is tinted by KHR_materials_volume's attenuation only)");
-        const double distance = numberOr(*volume, "attenuationDistance", std::numeric_limits<double>::infinity());
+        const double distance = extensionNumber(*volume, "KHR_materials_volume", "attenuationDistance",
+                                                std::numeric_limits<double>::infinity(), quoted);
         if (std::isfinite(distance) && distance > 0.0) {
-            glm::dvec3 colour(1.0);
-            const tinygltf::Value& c = volume->Get("attenuationColor");
-            if (c.IsArray() && c.ArrayLen() == 3)
-                for (int i = 0; i < 3; ++i) colour[i] = c.Get(i).IsNumber() ? c.Get(i).GetNumberAsDouble() : 1.0;
+            const glm::dvec3 colour =
+                extensionColour(*volume, "KHR_materials_volume", "attenuationColor", glm::dvec3(1.0), quoted);
             // mu = -ln(colour) / distance (KHR_materials_volume); a colour of 0 would be an
             // infinite mu: the smallest normal float keeps it finite and black.
             for (int i = 0; i < 3; ++i)
@@ -138,7 +154,7 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
         if (pbr.roughnessFactor > 0.0) ignored.push_back("roughnessFactor (a metal is a perfect mirror)");
         if (pbr.baseColorTexture.index >= 0) ignored.push_back("baseColorTexture");
     } else if (const tinygltf::Value* specular = extension("KHR_materials_specular");
-               specular && numberOr(*specular, "specularFactor", 1.0) == 0.0) {
+               specular && extensionNumber(*specular, "KHR_materials_specular", "specularFactor", 1.0, quoted) == 0.0) {
         // No specular layer at all (KHR_materials_specular): the diffuse base alone, Lambert.
         m.model = MaterialModel::Lambert;
         m.diffuse = base;
@@ -155,11 +171,9 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
         glm::vec3 colour(1.0f);
         float factor = 1.0f;
         if (const tinygltf::Value* specular = extension("KHR_materials_specular")) {
-            factor = float(numberOr(*specular, "specularFactor", 1.0));
-            const tinygltf::Value& c = specular->Get("specularColorFactor");
-            if (c.IsArray() && c.ArrayLen() == 3)
-                for (int i = 0; i < 3; ++i)
-                    colour[i] = c.Get(i).IsNumber() ? float(c.Get(i).GetNumberAsDouble()) : 1.0f;
+            factor = float(extensionNumber(*specular, "KHR_materials_specular", "specularFactor", 1.0, quoted));
+            colour =
+                extensionColour(*specular, "KHR_materials_specular", "specularColorFactor", glm::dvec3(1.0), quoted);
             if (specular->Has("specularTexture") || specular->Has("specularColorTexture"))
                 ignored.push_back("KHR_materials_specular's textures");
         }
@@ -214,7 +228,8 @@ void GltfMaterials::specularGlossinessMaterial(const tinygltf::Value& sg, int in
     };
     const glm::vec3 diffuse(factor("diffuseFactor", 4, glm::vec4(1.0f)));
     const glm::vec3 specular(factor("specularFactor", 3, glm::vec4(1.0f)));
-    const double glossiness = std::clamp(numberOr(sg, "glossinessFactor", 1.0), 0.0, 1.0);
+    const double glossiness = std::clamp(
+        extensionNumber(sg, "KHR_materials_pbrSpecularGlossiness", "glossinessFactor", 1.0, quoted), 0.0, 1.0);
     m.diffuse = diffuse;
     if (specular == glm::vec3(0.0f)) {
         m.model = MaterialModel::Lambert;

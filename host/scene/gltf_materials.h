@@ -45,6 +45,10 @@ public:
 private:
     [[noreturn]] void fail(const std::string& message) const;
     void warnAbout(const std::string& message) const;
+    double extensionNumber(const tinygltf::Value& extension, const char* name, const char* key, double fallback,
+                           const std::string& quoted) const;
+    glm::dvec3 extensionColour(const tinygltf::Value& extension, const char* name, const char* key, glm::dvec3 fallback,
+                               const std::string& quoted) const;
     std::uint32_t defaultMaterial();
     Material material(const tinygltf::Material& g, int index);
     void specularGlossinessMaterial(const tinygltf::Value& sg, int index, const std::string& quoted, Material& m,

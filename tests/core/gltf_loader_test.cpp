@@ -438,6 +438,40 @@ TEST_F(GltfLoader, ThinWalledGlassIsRefused) {
     }
 }
 
+// tinygltf passes material extensions' values on unchecked: one of the wrong type is refused,
+// naming the material, the extension and the value, never read as absent (a transmissionFactor
+// "1" read as 0 would be plastic).
+TEST_F(GltfLoader, MaterialExtensionValuesOfTheWrongTypeAreRefused) {
+    const json glass = {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                        {"KHR_materials_volume", {{"thicknessFactor", 1.0}, {"attenuationDistance", 2.0}}},
+                        {"KHR_materials_ior", {{"ior", 1.5}}}};
+    auto refusal = [&](const std::function<void(json&)>& breakIt) -> std::string {
+        json extensions = glass;
+        breakIt(extensions);
+        GltfBuilder b;
+        const int material = b.material({{"name", "tumbler"}, {"extensions", extensions}});
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}, {"material", material}})}});
+        try {
+            load(b.write(dir_ / "glass.gltf"));
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "loaded";
+    };
+    EXPECT_EQ(refusal([](json&) {}), "loaded");
+    auto expectContains = [](const std::string& message, const std::string& part) {
+        EXPECT_NE(message.find(part), std::string::npos) << message << "\nexpected: " << part;
+    };
+    expectContains(refusal([](json& e) { e["KHR_materials_transmission"]["transmissionFactor"] = "1"; }),
+                   "materials[0] (\"tumbler\"): KHR_materials_transmission's transmissionFactor is not a number");
+    expectContains(refusal([](json& e) { e["KHR_materials_ior"]["ior"] = "1.5"; }),
+                   "materials[0] (\"tumbler\"): KHR_materials_ior's ior is not a number");
+    expectContains(refusal([](json& e) { e["KHR_materials_volume"]["attenuationColor"] = {0.5, 0.5}; }),
+                   "materials[0] (\"tumbler\"): KHR_materials_volume's attenuationColor is not three numbers");
+    expectContains(refusal([](json& e) { e["KHR_materials_volume"]["thicknessFactor"] = true; }),
+                   "materials[0] (\"tumbler\"): KHR_materials_volume's thicknessFactor is not a number");
+}
+
 // The first perspective camera in node order, or the one named; its node looks down its -z with
 // +y up (glTF 2.0, 3.10.1); yfov in radians; the aspect ratio gives the image's height.
 TEST_F(GltfLoader, CamerasComeFromTheirNodes) {
