@@ -250,6 +250,20 @@ private:
         return roots;
     }
 
+    // A node's transform of another length than glTF 2.0's node schema gives it would be left out, and
+    // its mesh placed where the file does not put it: refused.
+    void checkTransformLengths(int index, const tinygltf::Node& node) const {
+        auto check = [&](const std::vector<double>& values, std::size_t length, const char* what) {
+            if (!values.empty() && values.size() != length)
+                fail("nodes[" + std::to_string(index) + "]: its " + what + " has " + std::to_string(values.size()) +
+                     " numbers; glTF 2.0 gives it " + std::to_string(length));
+        };
+        check(node.matrix, 16, "matrix");
+        check(node.translation, 3, "translation");
+        check(node.rotation, 4, "rotation");
+        check(node.scale, 3, "scale");
+    }
+
     // Depth-first over the node tree, parents before children, with each node's matrix to
     // vitrum's world (the options' transform times the z-up chain of node matrices).
     template <typename Visit>
@@ -262,6 +276,7 @@ private:
             if (onPath[std::size_t(index)]) fail("nodes[" + std::to_string(index) + "] is its own ancestor");
             onPath[std::size_t(index)] = true;
             const tinygltf::Node& node = model_.nodes[std::size_t(index)];
+            checkTransformLengths(index, node);
             const glm::dmat4 matrix = parent * zUpMatrix(localMatrix(node));
             onNode(index, node, matrix);
             for (int child : node.children) self(self, child, matrix);

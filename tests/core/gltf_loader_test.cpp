@@ -587,6 +587,18 @@ TEST_F(GltfLoader, BrokenFilesAreRefusedWithTheirReason) {
     }
     {
         GltfBuilder b;
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}})}});
+        b.node({{"mesh", 0}, {"translation", {1, 2}}});
+        expectRefused(b, "nodes[1]: its translation has 2 numbers; glTF 2.0 gives it 3");
+    }
+    {
+        GltfBuilder b;
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}})},
+                {"matrix", std::vector<double>(15, 1.0)}});
+        expectRefused(b, "nodes[0]: its matrix has 15 numbers; glTF 2.0 gives it 16");
+    }
+    {
+        GltfBuilder b;
         const int child = b.node({}, false);
         b.doc()["nodes"][child]["children"] = {child};
         b.doc()["scenes"][0]["nodes"].push_back(child);
