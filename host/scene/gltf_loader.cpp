@@ -138,12 +138,14 @@ public:
           materials_(scene_, model_, file_, load_.texelLimit) {}
 
     GltfResult read() {
+        if (options_.placements.empty() || (options_.takeCamera && options_.placements.size() != 1))
+            throw std::invalid_argument("loadGltf: a camera is taken from a file placed once");
         parse();
-        std::vector<int> roots = rootNodes();
-        // A mesh that two or more nodes place is stored once and placed by instances
-        // (docs/scene-format.md, "Instancing").
+        const std::vector<int> roots = rootNodes();
+        // A mesh placed twice or more, by two nodes or by two placements of the file, is stored once
+        // and placed by instances (docs/scene-format.md, "Instancing").
         std::map<int, std::size_t> uses;
-        visit(roots, [&](int, const tinygltf::Node& node, const glm::dmat4&) {
+        visit(roots, [&](const GltfPlacement&, int, const tinygltf::Node& node, const glm::dmat4&) {
             if (node.mesh >= 0) ++uses[node.mesh];
         });
         auto instanced = [&](int mesh) { return load_.instancing && uses[mesh] >= 2; };
@@ -154,33 +156,44 @@ public:
         const std::size_t firstTriangle = scene_.triangles.size();
         GltfResult result;
         std::vector<std::pair<int, glm::dmat4>> cameras;
-        std::map<int, std::vector<std::pair<int, glm::dmat4>>> placings;  // a mesh's nodes and their matrices
-        visit(roots, [&](int index, const tinygltf::Node& node, const glm::dmat4& world) {
-            if (node.mesh >= 0 && instanced(node.mesh)) placings[node.mesh].emplace_back(index, world);
+        struct Placing {
+            int node;
+            glm::dmat4 world;
+            const GltfPlacement* by;
+        };
+        std::map<int, std::vector<Placing>> placings;  // a mesh's nodes, their matrices and placements
+        visit(roots, [&](const GltfPlacement& by, int index, const tinygltf::Node& node, const glm::dmat4& world) {
+            if (node.mesh >= 0 && instanced(node.mesh)) placings[node.mesh].push_back({index, world, &by});
             else if (node.mesh >= 0) addMesh(index, node, world);
             if (node.camera >= 0) cameras.emplace_back(node.camera, world);
             if (addLight(node, world)) ++result.lights;
         });
         for (const auto& [meshIndex, nodes] : placings) {
             const std::size_t meshFirst = scene_.triangles.size(), meshObject = scene_.objectNames.size();
-            addMesh(nodes.front().first, model_.nodes[std::size_t(nodes.front().first)], glm::dmat4(1.0));
+            addMesh(nodes.front().node, model_.nodes[std::size_t(nodes.front().node)], glm::dmat4(1.0));
             if (scene_.triangles.size() == meshFirst) continue;
             std::vector<std::string> names;
             const std::uint32_t mesh = makeMesh(scene_, meshFirst, meshObject, names);
             const FloatBox box = meshBox(scene_, scene_.meshes[mesh]);
-            for (const auto& [node, world] : nodes) {
+            for (const Placing& p : nodes) {
+                const tinygltf::Node& node = model_.nodes[std::size_t(p.node)];
+                const std::string where =
+                    "nodes[" + std::to_string(p.node) + "]" + (p.by->by.empty() ? "" : ", placed by " + p.by->by + ",");
                 Instance instance;
                 try {
-                    instance = makeInstance(mesh, std::uint32_t(scene_.objectNames.size()), glm::mat4(world));
+                    instance = makeInstance(mesh, std::uint32_t(scene_.objectNames.size()), glm::mat4(p.world));
                 } catch (const std::invalid_argument&) {
-                    fail("nodes[" + std::to_string(node) + "]: its matrix is singular or not finite");
+                    // A matrix without an inverse (a scale of 0 hides a node) cannot move rays into
+                    // the mesh: that copy is made in the world, as a mesh placed once would be.
+                    addMesh(p.node, node, p.world);
+                    continue;
                 }
                 const FloatBox placed = instanceBox(instance, box);
                 const glm::vec3 size = placed.max - placed.min;
                 if (!(std::isfinite(size.x) && std::isfinite(size.y) && std::isfinite(size.z)))
-                    fail("nodes[" + std::to_string(node) + "] moves its mesh's vertices beyond the range of float");
+                    fail(where + " moves its mesh's vertices beyond the range of float");
                 scene_.instances.push_back(instance);
-                scene_.objectNames.push_back(file_.filename().string() + "/" + nodeName(node, model_.nodes[std::size_t(node)]));
+                scene_.objectNames.push_back(file_.filename().string() + "/" + nodeName(p.node, node));
             }
         }
         putMeshesLast(scene_);
@@ -264,25 +277,27 @@ private:
         check(node.scale, 3, "scale");
     }
 
-    // Depth-first over the node tree, parents before children, with each node's matrix to
-    // vitrum's world (the options' transform times the z-up chain of node matrices).
+    // Depth-first over the node tree, parents before children, once a placement of the file, with
+    // each node's matrix to vitrum's world (the placement's transform times the z-up chain of node
+    // matrices).
     template <typename Visit>
     void visit(const std::vector<int>& roots, Visit&& onNode) const {
         std::vector<bool> onPath(model_.nodes.size(), false);
-        const glm::dmat4 world = glm::dmat4(options_.transform);
-        auto walk = [&](auto& self, int index, const glm::dmat4& parent) -> void {
-            if (index < 0 || std::size_t(index) >= model_.nodes.size())
-                fail("a node's children name nodes[" + std::to_string(index) + "], which does not exist");
-            if (onPath[std::size_t(index)]) fail("nodes[" + std::to_string(index) + "] is its own ancestor");
-            onPath[std::size_t(index)] = true;
-            const tinygltf::Node& node = model_.nodes[std::size_t(index)];
-            checkTransformLengths(index, node);
-            const glm::dmat4 matrix = parent * zUpMatrix(localMatrix(node));
-            onNode(index, node, matrix);
-            for (int child : node.children) self(self, child, matrix);
-            onPath[std::size_t(index)] = false;
-        };
-        for (int root : roots) walk(walk, root, world);
+        for (const GltfPlacement& placement : options_.placements) {
+            auto walk = [&](auto& self, int index, const glm::dmat4& parent) -> void {
+                if (index < 0 || std::size_t(index) >= model_.nodes.size())
+                    fail("a node's children name nodes[" + std::to_string(index) + "], which does not exist");
+                if (onPath[std::size_t(index)]) fail("nodes[" + std::to_string(index) + "] is its own ancestor");
+                onPath[std::size_t(index)] = true;
+                const tinygltf::Node& node = model_.nodes[std::size_t(index)];
+                checkTransformLengths(index, node);
+                const glm::dmat4 matrix = parent * zUpMatrix(localMatrix(node));
+                onNode(placement, index, node, matrix);
+                for (int child : node.children) self(self, child, matrix);
+                onPath[std::size_t(index)] = false;
+            };
+            for (int root : roots) walk(walk, root, glm::dmat4(placement.transform));
+        }
     }
 
     const tinygltf::Accessor& accessor(int index, const std::string& what) const {
@@ -398,7 +413,7 @@ private:
 
     void addMesh(int nodeIndex, const tinygltf::Node& node, const glm::dmat4& world) {
         const tinygltf::Mesh& m = mesh(node.mesh);
-        std::string name = !node.name.empty() ? node.name : !m.name.empty() ? m.name : "node" + std::to_string(nodeIndex);
+        const std::string name = nodeName(nodeIndex, node);
         const glm::mat4 transform(world);
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(transform)));
         const bool mirrored = glm::determinant(glm::mat3(transform)) < 0.0f;  // keep the winding outward-facing

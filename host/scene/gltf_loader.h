@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -14,10 +15,19 @@
 
 namespace vitrum {
 
+// One place of the file's scene in the world: vitrum's z-up world to the scene's world, and who
+// placed it there for messages (a JSON scene's entry, "/objects/3"; empty for a file of its own).
+struct GltfPlacement {
+    glm::mat4 transform{1.0f};
+    std::string by;
+};
+
 struct GltfOptions {
-    glm::mat4 transform{1.0f};  // vitrum's z-up world to the scene's world; must be invertible
+    // The file's scene is placed once a placement: a JSON scene that names the file several times
+    // loads it once, and each of its meshes is stored once (docs/scene-format.md, "Instancing").
+    std::vector<GltfPlacement> placements{GltfPlacement{}};
     // Take the file's camera (the one named, else the first perspective camera in node order)
-    // into scene.camera, and its image size from the camera's aspect ratio.
+    // into scene.camera, and its image size from the camera's aspect ratio. One placement only.
     bool takeCamera = false;
 };
 

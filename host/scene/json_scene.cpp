@@ -90,18 +90,32 @@ public:
         // mesh that each entry places (docs/scene-format.md, "Instancing"); the others' triangles
         // come first, in the world.
         const std::vector<std::vector<std::size_t>> placings =
-            options_.instancing ? repeatedObjFiles(specs) : std::vector<std::vector<std::size_t>>{};
+            options_.instancing ? repeatedFiles(specs, false) : std::vector<std::vector<std::size_t>>{};
         std::vector<bool> placed(specs.size(), false);
         for (const std::vector<std::size_t>& uses : placings)
             for (std::size_t i : uses) placed[i] = true;
+        // A glTF file that two or more entries name is loaded once, at its first entry, and placed
+        // by each (its meshes stored once).
+        std::vector<std::vector<std::size_t>> gltfPlacings(specs.size());
+        for (std::size_t i = 0; i < specs.size(); ++i)
+            if (specs[i].gltf) gltfPlacings[i] = {i};
+        if (options_.instancing)
+            for (const std::vector<std::size_t>& uses : repeatedFiles(specs, true)) {
+                for (std::size_t i : uses) gltfPlacings[i].clear();
+                gltfPlacings[uses.front()] = uses;
+            }
         for (std::size_t i = 0; i < specs.size(); ++i) {
             const ObjectSpec& spec = specs[i];
             // A glTF's punctual lights join the scene's; its cameras are not used (the scene's
             // camera rules: docs/scene-format.md, "glTF in a JSON scene").
-            if (spec.gltf)
-                loadGltf(scene, spec.file, options_, {.transform = spec.options.transform});
-            else if (!placed[i])
+            if (spec.gltf && !gltfPlacings[i].empty()) {
+                GltfOptions gltf{.placements = {}};
+                for (std::size_t j : gltfPlacings[i])
+                    gltf.placements.push_back({specs[j].options.transform, "/objects/" + std::to_string(j)});
+                loadGltf(scene, spec.file, options_, gltf);
+            } else if (!spec.gltf && !placed[i]) {
                 loader.load(spec.file, spec.options);
+            }
         }
         for (const std::vector<std::size_t>& uses : placings) {
             const std::size_t firstTriangle = scene.triangles.size(), firstObject = scene.objectNames.size();
@@ -324,13 +338,13 @@ private:
         return c;
     }
 
-    // The entries of each OBJ file that two or more entries name with the same "mtl", in the
-    // order of their first entries.
-    static std::vector<std::vector<std::size_t>> repeatedObjFiles(const std::vector<ObjectSpec>& specs) {
+    // The entries of each glTF file, or each OBJ file with the same "mtl", that two or more entries
+    // name, in the order of their first entries.
+    static std::vector<std::vector<std::size_t>> repeatedFiles(const std::vector<ObjectSpec>& specs, bool gltf) {
         std::map<std::pair<fs::path, fs::path>, std::size_t> group;
         std::vector<std::vector<std::size_t>> groups;
         for (std::size_t i = 0; i < specs.size(); ++i) {
-            if (specs[i].gltf) continue;
+            if (specs[i].gltf != gltf) continue;
             const auto key = std::pair(fs::weakly_canonical(specs[i].file),
                                        specs[i].options.mtlOverride ? fs::weakly_canonical(*specs[i].options.mtlOverride)
                                                                     : fs::path());

@@ -8,7 +8,9 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -676,6 +678,81 @@ TEST_F(GltfLoader, JsonSceneEntryTakesTheTransform) {
     EXPECT_THROW(loadScene(dir_ / "both.json"), InputError);
     std::ofstream(dir_ / "mtl.json") << R"({"objects": [{"gltf": "part.gltf", "mtl": "part.gltf"}]})";
     EXPECT_THROW(loadScene(dir_ / "mtl.json"), InputError);
+}
+
+// A glTF file that several entries of a JSON scene name is loaded once (docs/scene-format.md,
+// "Instancing"): each of its meshes is stored once and placed by every entry, its lights come once
+// an entry, and the copies are the triangles that loading the file once an entry makes.
+TEST_F(GltfLoader, AFileThreeEntriesOfAJsonSceneNameIsLoadedOnce) {
+    GltfBuilder b;
+    const int shared = b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}});
+    b.node({{"mesh", shared}, {"name", "plain"}});
+    b.node({{"mesh", shared}, {"translation", {0, 0, 2}}, {"scale", {-1, 1, 1}}, {"name", "mirrored"}});
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}})}, {"translation", {3, 0, 0}},
+            {"name", "once"}});
+    b.doc()["extensionsUsed"] = {"KHR_lights_punctual"};
+    b.doc()["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "point"}, {"intensity", 5.0}}}}}}};
+    b.node({{"translation", {1, 2, 3}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    b.write(dir_ / "part.gltf");
+    const std::string cube = std::string(VITRUM_SOURCE_DIR) + "/scenes/meshes/cube.obj";
+    std::ofstream(dir_ / "thrice.json") << R"({"lights": [], "objects": [{"gltf": "part.gltf"}, {"obj": ")" << cube
+                                        << R"("}, {"gltf": "part.gltf", "transform": {"translate": [10, 0, 0]}},
+        {"gltf": "part.gltf", "transform": {"rotate_deg": [0, 0, 90], "translate": [0, 10, 0]}}]})";
+    const Scene scene = loadScene(dir_ / "thrice.json");
+    ASSERT_EQ(scene.meshes.size(), 2u);
+    EXPECT_EQ(scene.instances.size(), 9u);  // three entries, three mesh nodes each
+    EXPECT_EQ(worldTriangleCount(scene), 12u);  // the cube's
+    EXPECT_EQ(scene.triangles.size(), 12u + 2u);  // and each glTF mesh once
+    // The light at glTF's (1, 2, 3), vitrum's (1, -3, 2), once an entry: in place, moved along x,
+    // and turned a quarter about z ((x, y) to (-y, x)) and moved along y.
+    ASSERT_EQ(scene.lights.size(), 3u);
+    expectNear(scene.lights[0].position, {1, -3, 2});
+    expectNear(scene.lights[1].position, {11, -3, 2});
+    expectNear(scene.lights[2].position, {3, 11, 2}, 1e-5f);
+    // The copies are what the file loaded once an entry makes, object by object.
+    const Scene flat = loadScene(dir_ / "thrice.json", {.instancing = false});
+    EXPECT_TRUE(flat.instances.empty());
+    const Scene placed = flattened(scene);
+    ASSERT_EQ(placed.triangles.size(), flat.triangles.size());
+    using Corners = std::tuple<std::string, long, long, long, long, long, long, long, long, long>;
+    auto corners = [](const Scene& s) {
+        std::multiset<Corners> set;
+        for (const Triangle& t : s.triangles) {
+            auto r = [](float v) { return std::lround(v * 1e4f); };
+            const glm::vec3* p = t.position;
+            set.insert({s.objectNames[t.object], r(p[0].x), r(p[0].y), r(p[0].z), r(p[1].x), r(p[1].y), r(p[1].z),
+                        r(p[2].x), r(p[2].y), r(p[2].z)});
+        }
+        return set;
+    };
+    EXPECT_EQ(corners(placed), corners(flat));
+    for (std::size_t i = 0; i < flat.lights.size(); ++i) expectNear(scene.lights[i].position, flat.lights[i].position);
+}
+
+// A copy that cannot be an instance (a node scaled to nothing: its matrix has no inverse to move
+// rays into the mesh) is made in the world, as a mesh placed once is; a copy that an entry moves
+// beyond the range of float is refused naming the node and the entry.
+TEST_F(GltfLoader, ACopyWithoutAnInverseIsMadeInTheWorldAndOneBeyondFloatIsRefused) {
+    GltfBuilder b;
+    const int shared = b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}});
+    b.node({{"mesh", shared}});
+    b.node({{"mesh", shared}, {"translation", {0, 0, 2}}});
+    b.node({{"mesh", shared}, {"scale", {0, 0, 0}}, {"name", "hidden"}});
+    const Scene scene = load(b.write(dir_ / "hidden.gltf"));
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    EXPECT_EQ(scene.instances.size(), 2u);
+    ASSERT_EQ(worldTriangleCount(scene), 1u);
+    for (const glm::vec3& p : scene.triangles[0].position) EXPECT_EQ(p, glm::vec3(0.0f));
+    EXPECT_EQ(scene.objectNames.size(), 3u);
+    std::ofstream(dir_ / "far.json") << R"({"objects": [{"gltf": "hidden.gltf"}, {"gltf": "hidden.gltf",
+        "transform": {"scale": 1e38, "translate": [3e38, 0, 0]}}]})";
+    try {
+        loadScene(dir_ / "far.json");
+        ADD_FAILURE() << "no InputError";
+    } catch (const InputError& e) {
+        const std::string expected = "nodes[0], placed by /objects/1, moves its mesh's vertices beyond the range of float";
+        EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
 }
 
 }  // namespace
