@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "bvh/bvh.h"
+#include "common/parallel.h"
 #include "scene/instances.h"
 
 namespace vitrum {
@@ -385,6 +386,44 @@ std::uint32_t appendTree(std::vector<gpu::BvhNode>& nodes, const Bvh& tree, std:
     return offset;
 }
 
+// Boxes of a tree's nodes that together hold every triangle of it: from the root, the node of
+// largest area is replaced by its children until there are `parts` (or only leaves). Moved into
+// the world they bound a turned copy of the mesh far more tightly than its one box does.
+std::vector<FloatBox> treeCut(const Bvh& tree, std::size_t parts) {
+    auto box = [&](std::uint32_t index) {
+        const gpu::BvhNode& node = tree.nodes[index];
+        return FloatBox{glm::vec3(node.boundsMin), glm::vec3(node.boundsMax)};
+    };
+    auto area = [&](std::uint32_t index) {
+        const glm::vec3 d = box(index).max - box(index).min;
+        return d.x * d.y + d.y * d.z + d.z * d.x;
+    };
+    auto interior = [&](std::uint32_t index) {
+        return (std::bit_cast<std::uint32_t>(tree.nodes[index].boundsMax.w) & gpu::kInteriorNodeFlag) != 0;
+    };
+    std::vector<std::uint32_t> leaves;                       // of the cut, not to be split
+    std::vector<std::pair<float, std::uint32_t>> splittable;  // a heap by area
+    if (interior(0)) splittable.push_back({area(0), 0u});
+    else leaves.push_back(0u);
+    while (!splittable.empty() && leaves.size() + splittable.size() < parts) {
+        std::pop_heap(splittable.begin(), splittable.end());
+        const std::uint32_t node = splittable.back().second;
+        splittable.pop_back();
+        for (const std::uint32_t child : {node + 1, std::bit_cast<std::uint32_t>(tree.nodes[node].boundsMin.w)}) {
+            if (!interior(child)) {
+                leaves.push_back(child);
+                continue;
+            }
+            splittable.push_back({area(child), child});
+            std::push_heap(splittable.begin(), splittable.end());
+        }
+    }
+    std::vector<FloatBox> cut;
+    for (const std::uint32_t node : leaves) cut.push_back(box(node));
+    for (const auto& [nodeArea, node] : splittable) cut.push_back(box(node));
+    return cut;
+}
+
 }  // namespace
 
 Bvh buildBvh(std::span<const Triangle> triangles, const std::function<void(double)>& progress, unsigned threads) {
@@ -413,12 +452,22 @@ Bvh buildSceneBvh(const Scene& scene, const std::function<void(double)>& progres
     }
     if (progress) progress(0.5);
     // The top level: one leaf an instance (the world triangles' tree as an instance of its own).
-    const std::vector<FloatBox> meshes = meshBoxes(scene);
-    std::vector<Primitive> items;
-    for (std::uint32_t i = 0; i < scene.instances.size(); ++i) {
-        const FloatBox b = instanceBox(scene.instances[i], meshes[scene.instances[i].mesh]);
-        items.push_back({Box{b.min, b.max}, 0.5f * (b.min + b.max), i});
-    }
+    // A copy's box is the union of 64 upper boxes of its mesh's tree moved into the world, which
+    // fits a turned copy more tightly than its moved mesh box (docs/gpu-design.md, "Boxes that fit
+    // turned copies": 256 parts cost 3.5x as much for little more).
+    const std::uint32_t meshTreeOffset = worldCount > 0 ? 1 : 0;
+    std::vector<std::vector<FloatBox>> meshCuts;
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) meshCuts.push_back(treeCut(trees[meshTreeOffset + m], 64));
+    std::vector<Primitive> items(scene.instances.size());
+    parallelFor(
+        scene.instances.size(),
+        [&](std::size_t begin, std::size_t end) {
+            for (std::size_t i = begin; i < end; ++i) {
+                const FloatBox b = instanceBox(scene.instances[i], meshCuts[scene.instances[i].mesh]);
+                items[i] = {Box{b.min, b.max}, 0.5f * (b.min + b.max), std::uint32_t(i)};
+            }
+        },
+        4096);
     if (worldCount > 0) {
         const gpu::BvhNode& root = trees.front().nodes.front();
         const Box b{glm::vec3(root.boundsMin), glm::vec3(root.boundsMax)};
@@ -446,7 +495,6 @@ Bvh buildSceneBvh(const Scene& scene, const std::function<void(double)>& progres
     for (std::size_t t = 0; t < trees.size(); ++t)
         for (std::size_t i = 0; i < trees[t].triangleOrder.size(); ++i)
             bvh.triangleOrder[firsts[t] + i] = firsts[t] + trees[t].triangleOrder[i];
-    const std::uint32_t meshTreeOffset = worldCount > 0 ? 1 : 0;
     for (const Instance& instance : scene.instances) {
         gpu::GpuInstance g{};
         const glm::mat4 toObject = glm::transpose(instance.worldToObject);  // rows as columns

@@ -76,15 +76,18 @@ std::vector<FloatBox> meshBoxes(const Scene& scene) {
     return boxes;
 }
 
-FloatBox instanceBox(const Instance& instance, const FloatBox& meshBox) {
+FloatBox instanceBox(const Instance& instance, std::span<const FloatBox> meshParts) {
     const glm::dmat4 m(instance.objectToWorld);
+    glm::dmat3 extentMatrix(m);  // a box's half extent moves through |M|
+    for (int c = 0; c < 3; ++c) extentMatrix[c] = glm::abs(extentMatrix[c]);
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::dvec3 p((corner & 1) ? meshBox.max.x : meshBox.min.x, (corner & 2) ? meshBox.max.y : meshBox.min.y,
-                           (corner & 4) ? meshBox.max.z : meshBox.min.z);
-        const glm::dvec3 q = glm::dvec3(m * glm::dvec4(p, 1.0));
-        lo = glm::min(lo, q);
-        hi = glm::max(hi, q);
+    for (const FloatBox& part : meshParts) {
+        const glm::dvec3 centre = 0.5 * (glm::dvec3(part.min) + glm::dvec3(part.max));
+        const glm::dvec3 halfExtent = 0.5 * (glm::dvec3(part.max) - glm::dvec3(part.min));
+        const glm::dvec3 movedCentre = glm::dvec3(m * glm::dvec4(centre, 1.0));
+        const glm::dvec3 movedExtent = extentMatrix * halfExtent;
+        lo = glm::min(lo, movedCentre - movedExtent);
+        hi = glm::max(hi, movedCentre + movedExtent);
     }
     // The ray reaches the mesh through a float transform whose rounding moves its hits by a few
     // ulps of the box's largest coordinate (docs/gpu-design.md, "Instancing"): the box is grown by

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -35,10 +36,14 @@ struct FloatBox {
 FloatBox meshBox(const Scene& scene, const Mesh& mesh);
 std::vector<FloatBox> meshBoxes(const Scene& scene);
 
-// The world box of an instance whose mesh has box `meshBox`: the box of its eight corners moved
-// to the world in double, rounded outwards, so that it holds every triangle of the copy as a
-// float transform of the ray finds it.
-FloatBox instanceBox(const Instance& instance, const FloatBox& meshBox);
+// The world box of an instance whose mesh lies within the union of `meshParts` (boxes in the
+// mesh's space: its box, or boxes of its tree that hold every triangle): each part moved to the
+// world in double, their union rounded outwards, so that it holds every triangle of the copy as a
+// float transform of the ray finds it. Parts fit a turned copy more tightly than one box does.
+FloatBox instanceBox(const Instance& instance, std::span<const FloatBox> meshParts);
+inline FloatBox instanceBox(const Instance& instance, const FloatBox& meshBox) {
+    return instanceBox(instance, std::span(&meshBox, 1));
+}
 
 // The box of everything in the world: the world triangles and every instance's box; min > max
 // where the scene is empty.

@@ -151,6 +151,40 @@ std::string entry(const std::string& obj, const std::string& extra = "") {
     return R"({"obj": ")" + std::string(VITRUM_SOURCE_DIR) + "/scenes/meshes/" + obj + "\"" + extra + "}";
 }
 
+// A copy's box in the top level (buildSceneBvh) is the union of upper boxes of its mesh's tree
+// moved to the world: it holds every vertex of the copy, and a sphere turned 45 degrees about z gets
+// a box close to its own, where its moved mesh box is sqrt(2) as wide.
+TEST(Instancing, ATurnedCopysBoxFitsTheCopy) {
+    const fs::path file = writeScene(
+        "turned.json", entry("sphere.obj", R"(, "transform": {"rotate_deg": [0, 0, 45]})") + ", " +
+                           entry("sphere.obj", R"(, "transform": {"translate": [5, 0, 0]})"));
+    const Scene scene = loadScene(file);
+    ASSERT_EQ(scene.instances.size(), 2u);
+    const Bvh bvh = buildSceneBvh(scene);
+    const Scene flat = flattened(scene);
+    FloatBox copy{glm::vec3(1e30f), glm::vec3(-1e30f)};  // the turned copy's vertices
+    for (const Triangle& t : flat.triangles)
+        if (t.object == scene.instances[0].firstObject)
+            for (const glm::vec3& p : t.position) {
+                copy.min = glm::min(copy.min, p);
+                copy.max = glm::max(copy.max, p);
+            }
+    const gpu::BvhNode* leaf = nullptr;  // the top level's leaf of instance 0 (a count of 0)
+    for (const gpu::BvhNode& node : bvh.nodes)
+        if (std::bit_cast<std::uint32_t>(node.boundsMax.w) == 0u && std::bit_cast<std::uint32_t>(node.boundsMin.w) == 0u)
+            leaf = &node;
+    ASSERT_NE(leaf, nullptr);
+    EXPECT_TRUE(glm::all(glm::lessThanEqual(glm::vec3(leaf->boundsMin), copy.min)));
+    EXPECT_TRUE(glm::all(glm::lessThanEqual(copy.max, glm::vec3(leaf->boundsMax))));
+    const glm::vec3 fitted = glm::vec3(leaf->boundsMax) - glm::vec3(leaf->boundsMin);
+    const FloatBox moved = instanceBox(scene.instances[0], meshBox(scene, scene.meshes[0]));
+    const glm::vec3 exact = copy.max - copy.min;
+    for (int a = 0; a < 2; ++a) {
+        EXPECT_GT((moved.max - moved.min)[a], 1.4f * exact[a]);  // sqrt(2)
+        EXPECT_LT(fitted[a], 0.9f * (moved.max - moved.min)[a]) << fitted[a] / exact[a];
+    }
+}
+
 TEST(Instancing, AJsonSceneStoresAFileItNamesTwiceOnce) {
     const fs::path file = writeScene(
         "twice.json", entry("cube.obj", R"(, "transform": {"translate": [-1, 0, 0]})") + ", " + entry("prism.obj") + ", " +
