@@ -6,6 +6,7 @@
 
 #include "app/arguments.h"
 #include "app/commands.h"
+#include "common/atomic_file.h"
 #include "common/error.h"
 #include "image/image_diff.h"
 #include "image/image.h"
@@ -35,6 +36,8 @@ int diffCommand(int argc, char** argv, int first) {
         else images.push_back(a);
     }
     if (images.size() != 2) throw InputError("diff needs two images (see vitrum diff --help)");
+    if (!heatmap.empty())
+        for (const std::string& image : images) checkNotAnInput(heatmap, image, "an image compared");
     Image a = readImage(images[0]);
     Image b = readImage(images[1]);
     ImageDiff d = diffImages(a, b);

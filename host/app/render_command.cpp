@@ -145,6 +145,7 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
             checkSceneFitsDevice(*device, triangles, sceneGeometryAtLeast(triangles), nullptr, command.gpu.tileSize);
         };
     Scene scene = loadScene(command.scenePath, loadOptions);
+    if (writes) checkOutputsSpareTheScenesImages(command, scene);
     applyOverrides(command, scene);
     if (const std::string note = largeRenderNote(scene); !note.empty()) warn(note);
     const double loadSeconds = std::chrono::duration<double>(Clock::now() - loadStart).count();

@@ -153,7 +153,14 @@ void checkOutputs(const RenderCommand& c) {
         if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
             throw InputError(out + ": cannot write the file: " + parent.string() + " is not a directory");
         checkWritable(out);
+        checkNotAnInput(out, c.scenePath, "the scene file");
     }
+}
+
+void checkOutputsSpareTheScenesImages(const RenderCommand& c, const Scene& scene) {
+    for (const std::string& out : {c.outputPath, c.statsPath})
+        for (const Texture& texture : scene.textures)
+            if (!out.empty()) checkNotAnInput(out, texture.path, "one of the scene's images");
 }
 
 void applyOverrides(const RenderCommand& c, Scene& scene) {

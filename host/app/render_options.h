@@ -42,8 +42,12 @@ std::string renderHelp();
 // option that is wrong.
 RenderCommand parseRenderCommand(int argc, char** argv, int first);
 
-// Fails before any long work when the output or the statistics cannot be written where asked.
+// Fails before any long work when the output or the statistics cannot be written where asked, or
+// would overwrite the scene file.
 void checkOutputs(const RenderCommand& command);
+// Fails, once the scene is loaded and before it is rendered, when the output would overwrite a
+// texture or environment map of the scene.
+void checkOutputsSpareTheScenesImages(const RenderCommand& command, const Scene& scene);
 
 // The command's overrides of the scene's own settings, then the checks of the camera, the lights
 // and the image's size that a scene file's values pass too.

@@ -32,6 +32,14 @@ void checkWritable(const std::filesystem::path& path) {
     std::filesystem::remove(temporary, ignored);
 }
 
+void checkNotAnInput(const std::filesystem::path& output, const std::filesystem::path& input, const std::string& what) {
+    std::error_code ec;
+    if (std::filesystem::equivalent(output, input, ec))
+        throw inputError(output, 0,
+                         "cannot write the file: it is " + what + (output == input ? "" : " (" + input.string() + ")") +
+                             ", which would be lost");
+}
+
 void writeFileAtomically(const std::filesystem::path& path, const std::string& contents) {
     const std::filesystem::path temporary = temporaryFor(path);
     {

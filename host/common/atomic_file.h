@@ -19,4 +19,8 @@ void writeFileAtomically(const std::filesystem::path& path, const std::string& c
 // long work.
 void checkWritable(const std::filesystem::path& path);
 
+// Throws InputError naming `output` when it is `input` (the same file, by any path or link), which
+// writing the output would destroy; `what` says what the input is ("the scene file").
+void checkNotAnInput(const std::filesystem::path& output, const std::filesystem::path& input, const std::string& what);
+
 }  // namespace vitrum

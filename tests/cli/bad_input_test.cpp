@@ -412,6 +412,43 @@ TEST_F(CliBadInput, AnOutputNamedLikeAFolderIsRefusedBeforeRendering) {
     EXPECT_FALSE(fs::exists(dir_ / "out.png"));
 }
 
+// An output that is a file the render reads (the scene itself, by --stats, or a texture or
+// background, by -o, through another path to it) is refused before the render, and the file is
+// left as it was; so is a heat map of `vitrum diff` over an image it compares.
+TEST_F(CliBadInput, AnOutputThatIsOneOfTheScenesFilesIsRefusedAndTheFileKept) {
+    const std::string sceneText = "{\"objects\": [{\"obj\": \"tri.obj\"}]}\n";
+    const std::string sceneFile = write("scene.json", sceneText);
+    CommandRun r = vitrum("render " + sceneFile + " --width 8 --height 8 -o " + path("out.png") + " --stats " +
+                          path("./scene.json"));
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("it is the scene file"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(path("out.png")));
+    std::ifstream scene(sceneFile);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(scene), {}), sceneText);
+
+    // A texture of the scene, and the scene's background, written to by -o.
+    write("m.obj", "mtllib m.mtl\nusemtl a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n");
+    write("m.mtl", "newmtl a\nshader 2\nKd 1 1 1\nmap_Kd texture.pfm\n");
+    const std::string texel = "PF\n1 1\n-1.0\n" + std::string(12, '\0');
+    write("texture.pfm", texel);
+    write("sky.pfm", texel);
+    write("sky.json", "{\"objects\": [{\"obj\": \"tri.obj\"}], \"background\": {\"spherical\": \"sky.pfm\"}}");
+    for (const auto& [scenePath, image] : {std::pair{path("m.obj"), "texture.pfm"}, std::pair{path("sky.json"), "sky.pfm"}}) {
+        CommandRun o = vitrum("render " + scenePath + " --width 8 --height 8 -o " + (dir_ / "." / image).string());
+        EXPECT_EQ(o.exitCode, 1) << o.output;
+        EXPECT_NE(o.output.find("it is one of the scene's images"), std::string::npos) << o.output;
+        EXPECT_EQ(o.output.find("rays:"), std::string::npos) << "rendered before refusing: " << o.output;
+        std::ifstream kept(path(image), std::ios::binary);
+        EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), texel) << image;
+    }
+    // diff's heat map over one of the images it compares.
+    CommandRun d = vitrum("diff " + path("sky.pfm") + " " + path("texture.pfm") + " --heatmap " + path("sky.pfm"));
+    EXPECT_EQ(d.exitCode, 1) << d.output;
+    EXPECT_NE(d.output.find("it is an image compared"), std::string::npos) << d.output;
+    std::ifstream kept(path("sky.pfm"), std::ios::binary);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), texel);
+}
+
 // ------------------------------------------------------------------------------------ device limits
 
 // VITRUM_MAX_BUFFER_BYTES (for tests only, host/gpu/gpu_buffer.cpp) lowers the storage buffer
