@@ -239,6 +239,8 @@ private:
         for (const std::string& name : model_.extensionsRequired)
             if (!isReadGltfExtension(name))
                 fail("requires the glTF extension " + name + ", which vitrum does not read");
+        quantized_ = std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), "KHR_mesh_quantization") !=
+                     model_.extensionsUsed.end();
     }
 
     // The scene's root nodes: the default scene's, else the first scene's, else every node that is
@@ -309,17 +311,39 @@ private:
     // An accessor's elements as doubles, `components` a element, with byte strides, normalized
     // integers and sparse substitution (glTF 2.0, 3.6.2), every byte checked against its buffer.
     // The component types glTF 2.0 allows a vertex attribute (3.7.2.1): FLOAT for POSITION and
-    // NORMAL (others need KHR_mesh_quantization, which vitrum does not read), and for texture
-    // coordinates also normalized unsigned bytes and shorts.
-    void checkComponentType(int index, const std::string& what, bool normalizedIntegers) const {
+    // NORMAL, and for texture coordinates also normalized unsigned bytes and shorts; with
+    // KHR_mesh_quantization also (its table of attribute types) bytes and shorts, normalized or not,
+    // for positions and texture coordinates, and normalized bytes and shorts for normals.
+    enum class Attribute { Position, Normal, TexCoord };
+    void checkComponentType(int index, const std::string& what, Attribute attribute) const {
         const tinygltf::Accessor& a = accessor(index, what);
-        if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) return;
-        if (normalizedIntegers && a.normalized &&
-            (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT))
-            return;
-        fail("accessors[" + std::to_string(index) + "] (" + what + ") has component type " + std::to_string(a.componentType) +
-             "; glTF 2.0 allows it FLOAT (5126)" +
-             (normalizedIntegers ? " or normalized unsigned bytes (5121) or shorts (5123)" : ""));
+        const int type = a.componentType;
+        if (type == TINYGLTF_COMPONENT_TYPE_FLOAT) return;
+        const bool unsignedInteger =
+            type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+        const bool signedInteger = type == TINYGLTF_COMPONENT_TYPE_BYTE || type == TINYGLTF_COMPONENT_TYPE_SHORT;
+        bool allowed = false;
+        std::string others;  // what else the file may use
+        switch (attribute) {
+            case Attribute::Position:
+                allowed = quantized_ && (signedInteger || unsignedInteger);
+                others = quantized_ ? " or bytes (5120, 5121) or shorts (5122, 5123)" : "";
+                break;
+            case Attribute::Normal:
+                allowed = quantized_ && a.normalized && signedInteger;
+                others = quantized_ ? " or normalized signed bytes (5120) or shorts (5122)" : "";
+                break;
+            case Attribute::TexCoord:
+                allowed = (a.normalized && unsignedInteger) || (quantized_ && (signedInteger || unsignedInteger));
+                others = quantized_ ? " or bytes (5120, 5121) or shorts (5122, 5123)"
+                                    : " or normalized unsigned bytes (5121) or shorts (5123)";
+                break;
+        }
+        if (!allowed)
+            fail("accessors[" + std::to_string(index) + "] (" + what + ") has component type " + std::to_string(type) +
+                 (a.normalized ? " (normalized)" : "") + "; " +
+                 (quantized_ ? "KHR_mesh_quantization allows it" : "glTF 2.0 allows it") + " FLOAT (5126)" + others +
+                 (quantized_ ? "" : " (more with KHR_mesh_quantization, which the file does not declare)"));
     }
 
     std::vector<double> elements(int index, int components, const std::string& what) const {
@@ -443,17 +467,17 @@ private:
                 warnAbout("morph targets are ignored: meshes are rendered without their weights");
                 warnedMorph_ = true;
             }
-            checkComponentType(primitive.attributes.at("POSITION"), where + ".attributes.POSITION", false);
+            checkComponentType(primitive.attributes.at("POSITION"), where + ".attributes.POSITION", Attribute::Position);
             const std::vector<double> positions = elements(primitive.attributes.at("POSITION"), 3, where + ".attributes.POSITION");
             const std::size_t vertexCount = positions.size() / 3;
             std::vector<double> normals, uvs;
             if (auto n = primitive.attributes.find("NORMAL"); n != primitive.attributes.end()) {
-                checkComponentType(n->second, where + ".attributes.NORMAL", false);
+                checkComponentType(n->second, where + ".attributes.NORMAL", Attribute::Normal);
                 normals = elements(n->second, 3, where + ".attributes.NORMAL");
                 if (normals.size() != positions.size()) fail(where + " has a NORMAL for some vertices only");
             }
             if (auto t = primitive.attributes.find("TEXCOORD_0"); t != primitive.attributes.end()) {
-                checkComponentType(t->second, where + ".attributes.TEXCOORD_0", true);
+                checkComponentType(t->second, where + ".attributes.TEXCOORD_0", Attribute::TexCoord);
                 // glTF requires VEC2; assimp 5.2 writes VEC3 with a zero third: its first two read.
                 const bool vec3 = accessor(t->second, where + ".attributes.TEXCOORD_0").type == TINYGLTF_TYPE_VEC3;
                 uvs = elements(t->second, vec3 ? 3 : 2, where + ".attributes.TEXCOORD_0");
@@ -620,6 +644,7 @@ private:
     GltfMaterials materials_;
     std::size_t trianglesToMake_ = 0, trianglesMade_ = 0;
     bool warnedSkin_ = false, warnedMorph_ = false;
+    bool quantized_ = false;  // the file uses KHR_mesh_quantization
 };
 
 }  // namespace

@@ -39,7 +39,8 @@ bool isReadGltfExtension(const std::string& name) {
     static const std::set<std::string> read = {"KHR_materials_transmission", "KHR_materials_volume",
                                                "KHR_materials_ior",          "KHR_materials_specular",
                                                "KHR_materials_dispersion",   "KHR_lights_punctual",
-                                               "KHR_texture_transform",      "KHR_materials_pbrSpecularGlossiness"};
+                                               "KHR_texture_transform",      "KHR_materials_pbrSpecularGlossiness",
+                                               "KHR_mesh_quantization"};
     return read.count(name) != 0;
 }
 

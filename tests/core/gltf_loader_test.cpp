@@ -215,6 +215,47 @@ TEST_F(GltfLoader, AMeshTwoNodesUseIsStoredOnceAndPlacedTwice) {
     }
 }
 
+// KHR_mesh_quantization: positions as shorts (4 a vertex, as glTF aligns attributes to 4 bytes)
+// that the node's scale dequantizes, normals as normalized bytes, texture coordinates as unsigned
+// bytes, read as the floats they stand for; without the extension declared, refused naming the
+// accessor and the extension.
+TEST_F(GltfLoader, QuantizedAttributesReadAsTheFloatsTheyStandFor) {
+    auto build = [&](bool declared) {
+        GltfBuilder b;
+        const int positions = b.accessor(std::vector<std::int16_t>{0, 0, 0, 0, 4, 0, 0, 0, 0, 8, 0, 0}, 5122, "VEC3", 3);
+        b.doc()["bufferViews"][positions]["byteStride"] = 8;
+        const int normals = b.accessor(std::vector<std::int8_t>{0, 0, 127, 0, 0, 0, 127, 0, 0, 0, 127, 0}, 5120, "VEC3", 3);
+        b.doc()["bufferViews"][normals]["byteStride"] = 4;
+        b.doc()["accessors"][normals]["normalized"] = true;
+        const int uvs = b.accessor(std::vector<std::uint8_t>{0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0}, 5121, "VEC2", 3);
+        b.doc()["bufferViews"][uvs]["byteStride"] = 4;
+        const json attributes = {{"POSITION", positions}, {"NORMAL", normals}, {"TEXCOORD_0", uvs}};
+        b.node({{"mesh", b.mesh({{"attributes", attributes}})}, {"scale", {0.25, 0.25, 0.25}}});
+        if (declared) b.doc()["extensionsUsed"] = b.doc()["extensionsRequired"] = {"KHR_mesh_quantization"};
+        return b.write(dir_ / (declared ? "quantized.gltf" : "undeclared.gltf"));
+    };
+    const Scene scene = load(build(true));
+    ASSERT_EQ(scene.triangles.size(), 1u);
+    const Triangle& t = scene.triangles[0];
+    // glTF's (0, 0, 0), (1, 0, 0), (0, 2, 0) in vitrum's z-up; the normal glTF's +z, vitrum's -y;
+    // vitrum's v is 1 - glTF's.
+    expectNear(t.position[0], {0, 0, 0});
+    expectNear(t.position[1], {1, 0, 0});
+    expectNear(t.position[2], {0, 0, 2});
+    for (const glm::vec3& n : t.normal) expectNear(n, {0, -1, 0});
+    EXPECT_EQ(t.uv[1], glm::vec2(1, 1));
+    EXPECT_EQ(t.uv[2], glm::vec2(0, 0));
+    try {
+        load(build(false));
+        ADD_FAILURE() << "no InputError";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("accessors[0] (meshes[0].primitives[0].attributes.POSITION) has component type 5122"),
+                  std::string::npos) << message;
+        EXPECT_NE(message.find("KHR_mesh_quantization, which the file does not declare"), std::string::npos) << message;
+    }
+}
+
 // Every index component type the spec allows (unsigned byte, short, int) and no indices at all
 // give the same triangles.
 TEST_F(GltfLoader, IndexTypesAndNonIndexedGiveTheSameTriangles) {
