@@ -15,6 +15,9 @@ namespace vitrum {
 inline constexpr std::uint64_t kMaxSceneFileBytes = std::uint64_t(64) << 20;
 inline constexpr std::uint64_t kMaxObjFileBytes = std::uint64_t(4) << 30;
 inline constexpr std::uint64_t kMaxImageFileBytes = (std::uint64_t(2) << 30) - 1;
+// A .gltf or .glb file (tinygltf reads a document of up to 2^32 - 1 bytes; a .glb's header
+// cannot give more); its .bin files are tinygltf's to read.
+inline constexpr std::uint64_t kMaxGltfFileBytes = (std::uint64_t(4) << 30) - 1;
 
 // Throws InputError "PATH: cannot open WHAT (no such file)", "... (not a regular file: a FIFO)"
 // and the like unless `path` names a regular file. `what`: "the OBJ file", "the image", ...

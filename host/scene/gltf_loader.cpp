@@ -17,7 +17,9 @@
 
 #include "common/error.h"
 #include "common/file_extension.h"
+#include "common/input_file.h"
 #include "scene/gltf_errors.h"
+#include "scene/gltf_meshopt.h"
 #include "scene/gltf_materials.h"
 #include "scene/instances.h"
 #include "scene/quote_input.h"
@@ -229,10 +231,18 @@ private:
         std::error_code ec;
         if (!fs::is_regular_file(file_, ec)) fail(fs::exists(file_, ec) ? "not a regular file" : "no such file");
         if (binary) checkGlbLength();
-        const bool ok = binary ? parser.LoadBinaryFromFile(&model_, &errors, &warnings, file_.string())
-                               : parser.LoadASCIIFromFile(&model_, &errors, &warnings, file_.string());
+        GltfMeshopt meshopt(file_);
+        const std::vector<unsigned char> document =
+            meshopt.prepare(readInputFile(file_, "the glTF file", kMaxGltfFileBytes), binary);
+        parser.SetFsCallbacks(meshopt.fileCallbacks());
+        const std::string baseDir = file_.parent_path().string();
+        const bool ok =
+            binary ? parser.LoadBinaryFromMemory(&model_, &errors, &warnings, document.data(), unsigned(document.size()), baseDir)
+                   : parser.LoadASCIIFromString(&model_, &errors, &warnings, reinterpret_cast<const char*>(document.data()),
+                                                unsigned(document.size()), baseDir);
         if (!ok || !errors.empty())
             fail(describeGltfErrors(file_, errors));
+        meshopt.decode(model_);
         std::istringstream lines(warnings);
         for (std::string w; std::getline(lines, w);)
             if (!w.empty()) warnAbout(w);

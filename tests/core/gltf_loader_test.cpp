@@ -8,11 +8,13 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <set>
 #include <string>
 #include <tuple>
 #include <vector>
 
+#include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
 #include "analysis/scene_features.h"
@@ -63,6 +65,18 @@ public:
         return int(doc_["accessors"].size() - 1);
     }
     int positions(const std::vector<float>& xyz) { return accessor(xyz, 5126, "VEC3", xyz.size() / 3); }
+    // `bytes` appended to the file's buffer (buffer 0); returns their offset.
+    std::size_t append(const std::vector<unsigned char>& bytes) {
+        while (bin_.size() % 4) bin_.push_back(0);
+        const std::size_t offset = bin_.size();
+        bin_.insert(bin_.end(), bytes.begin(), bytes.end());
+        return offset;
+    }
+    // A buffer after buffer 0 (the file's data); returns its index.
+    int buffer(json buffer) {
+        moreBuffers_.push_back(std::move(buffer));
+        return int(moreBuffers_.size());
+    }
 
     // A mesh of one primitive; returns its index.
     int mesh(json primitive) {
@@ -95,6 +109,7 @@ public:
         if (!bin_.empty())
             doc["buffers"] = json::array({{{"byteLength", bin_.size()},
                                            {"uri", "data:application/octet-stream;base64," + base64(bin_)}}});
+        for (const json& buffer : moreBuffers_) doc["buffers"].push_back(buffer);
         std::ofstream(file) << doc.dump(1);
         return file;
     }
@@ -102,6 +117,7 @@ public:
     fs::path writeGlb(const fs::path& file) {
         json doc = doc_;
         doc["buffers"] = json::array({{{"byteLength", bin_.size()}}});
+        for (const json& buffer : moreBuffers_) doc["buffers"].push_back(buffer);
         std::string text = doc.dump();
         while (text.size() % 4) text += ' ';
         std::vector<unsigned char> bin = bin_;
@@ -123,6 +139,7 @@ public:
 private:
     json doc_;
     std::vector<unsigned char> bin_;
+    std::vector<json> moreBuffers_;
 };
 
 // One triangle in glTF coordinates, counter-clockwise seen from +z (glTF's viewer side).
@@ -254,6 +271,124 @@ TEST_F(GltfLoader, QuantizedAttributesReadAsTheFloatsTheyStandFor) {
                   std::string::npos) << message;
         EXPECT_NE(message.find("KHR_mesh_quantization, which the file does not declare"), std::string::npos) << message;
     }
+}
+
+// EXT_meshopt_compression: positions, normals (octahedral, 8 bits) and triangle indices
+// compressed by meshoptimizer's encoders into buffer 0, decoded into a fallback buffer that the
+// file does not hold (no uri); in a .gltf and a .glb, they read as the uncompressed mesh does.
+class MeshoptMesh {
+public:
+    MeshoptMesh() {
+        // A quad of two triangles, its normals tilted differently at each corner.
+        positions_ = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+        normals_ = {0, 0, 1, 0.6f, 0, 0.8f, 0, 0.6f, 0.8f, -0.6f, 0, 0.8f};
+        indices_ = {0, 1, 2, 0, 2, 3};
+    }
+    // The uncompressed mesh.
+    fs::path plain(const fs::path& file) const {
+        GltfBuilder b;
+        const int n = b.accessor(normals_, 5126, "VEC3", 4);
+        const int i = b.accessor(indices_, 5123, "SCALAR", 6);
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(positions_)}, {"NORMAL", n}}}, {"indices", i}})}});
+        return b.write(file);
+    }
+    // `change` edits the document before it is written; the fallback buffer declares
+    // `fallbackBytes` (what the views decode to).
+    fs::path compressed(const fs::path& file, bool glb, const std::function<void(json&)>& change = {},
+                        std::size_t fallbackBytes = 48 + 16 + 12) const {
+        GltfBuilder b;
+        // Normals as 8-bit octahedral x, y, and 1 in z (4 bytes a vertex), as meshopt's filter wants.
+        std::vector<std::int8_t> octahedral(16);
+        std::vector<float> normals4;
+        for (int v = 0; v < 4; ++v)
+            normals4.insert(normals4.end(), {normals_[3 * v], normals_[3 * v + 1], normals_[3 * v + 2], 0.0f});
+        meshopt_encodeFilterOct(octahedral.data(), 4, 4, 8, normals4.data());
+        const int fallback = b.buffer({{"byteLength", fallbackBytes}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
+        auto view = [&](const void* data, std::size_t count, std::size_t stride, const char* mode, const char* filter,
+                        std::size_t at) {
+            std::vector<unsigned char> packed;
+            if (std::string(mode) == "ATTRIBUTES") {
+                packed.resize(meshopt_encodeVertexBufferBound(count, stride));
+                packed.resize(meshopt_encodeVertexBuffer(packed.data(), packed.size(), data, count, stride));
+            } else {
+                packed.resize(meshopt_encodeIndexBufferBound(count, 4));
+                packed.resize(meshopt_encodeIndexBuffer(packed.data(), packed.size(),
+                                                        static_cast<const unsigned short*>(data), count));
+            }
+            json extension = {{"buffer", 0}, {"byteOffset", b.append(packed)}, {"byteLength", packed.size()},
+                              {"byteStride", stride}, {"count", count}, {"mode", mode}};
+            if (filter) extension["filter"] = filter;
+            json v = {{"buffer", fallback}, {"byteOffset", at}, {"byteLength", count * stride},
+                      {"extensions", {{"EXT_meshopt_compression", extension}}}};
+            if (std::string(mode) == "ATTRIBUTES") v["byteStride"] = stride;
+            b.doc()["bufferViews"].push_back(v);
+            return int(b.doc()["bufferViews"].size() - 1);
+        };
+        auto accessor = [&](int view, int componentType, const char* type, std::size_t count, bool normalized) {
+            b.doc()["accessors"].push_back({{"bufferView", view}, {"componentType", componentType}, {"count", count},
+                                            {"type", type}, {"normalized", normalized}});
+            return int(b.doc()["accessors"].size() - 1);
+        };
+        const int p = accessor(view(positions_.data(), 4, 12, "ATTRIBUTES", nullptr, 0), 5126, "VEC3", 4, false);
+        const int n = accessor(view(octahedral.data(), 4, 4, "ATTRIBUTES", "OCTAHEDRAL", 48), 5120, "VEC3", 4, true);
+        const int i = accessor(view(indices_.data(), 6, 2, "TRIANGLES", nullptr, 64), 5123, "SCALAR", 6, false);
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", p}, {"NORMAL", n}}}, {"indices", i}})}});
+        b.doc()["extensionsUsed"] = b.doc()["extensionsRequired"] = {"EXT_meshopt_compression", "KHR_mesh_quantization"};
+        if (change) change(b.doc());
+        return glb ? b.writeGlb(file) : b.write(file);
+    }
+
+private:
+    std::vector<float> positions_, normals_;
+    std::vector<std::uint16_t> indices_;
+};
+
+TEST_F(GltfLoader, MeshoptCompressedBuffersReadAsTheUncompressedMesh) {
+    const MeshoptMesh mesh;
+    const Scene plain = load(mesh.plain(dir_ / "plain.gltf"));
+    ASSERT_EQ(plain.triangles.size(), 2u);
+    for (const bool glb : {false, true}) {
+        const Scene scene = load(mesh.compressed(dir_ / (glb ? "meshopt.glb" : "meshopt.gltf"), glb));
+        ASSERT_EQ(scene.triangles.size(), 2u) << glb;
+        for (std::size_t t = 0; t < 2; ++t)
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_EQ(scene.triangles[t].position[c], plain.triangles[t].position[c]) << glb;
+                // 8-bit octahedral normals: within 0.01 of the float ones.
+                EXPECT_LT(glm::length(scene.triangles[t].normal[c] - plain.triangles[t].normal[c]), 0.01f) << glb;
+            }
+    }
+}
+
+TEST_F(GltfLoader, MeshoptBuffersThatDoNotDecodeOrAskForTooMuchAreRefused) {
+    const MeshoptMesh mesh;
+    auto refusal = [&](const std::string& name, const std::function<void(json&)>& change,
+                       std::size_t fallbackBytes = 48 + 16 + 12) -> std::string {
+        try {
+            load(mesh.compressed(dir_ / name, false, change, fallbackBytes));
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "no refusal";
+    };
+    auto expect = [&](const std::string& message, const std::string& part) {
+        EXPECT_NE(message.find(part), std::string::npos) << message;
+    };
+    expect(refusal("short.gltf", [](json& doc) { doc["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["byteLength"] = 5; }),
+           "bufferViews[0]: EXT_meshopt_compression: its bytes do not decode");
+    expect(refusal("huge.gltf", [](json&) {}, std::size_t(1e12)),
+           "buffers[1]: its byteLength of 1000000000000 is more than its compressed views decode to");
+    expect(refusal("many.gltf",
+                   [](json& doc) {
+                       doc["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["count"] = std::uint64_t(1e9);
+                       doc["bufferViews"][0]["byteLength"] = std::uint64_t(12e9);
+                   }),
+           "bufferViews[0]: EXT_meshopt_compression decodes 1000000000 elements");
+    expect(refusal("mode.gltf", [](json& doc) { doc["bufferViews"][2]["extensions"]["EXT_meshopt_compression"]["mode"] = "LINES"; }),
+           "has the mode \"LINES\"");
+    expect(refusal("stride.gltf", [](json& doc) { doc["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["byteStride"] = 6; }),
+           "has a byteStride of 6");
+    expect(refusal("beyond.gltf", [](json& doc) { doc["bufferViews"][2]["byteOffset"] = 68; }),
+           "bufferViews[2] reaches beyond its buffer");
 }
 
 // Every index component type the spec allows (unsigned byte, short, int) and no indices at all
@@ -801,6 +936,54 @@ TEST_F(GltfLoader, ACopyWithoutAnInverseIsMadeInTheWorldAndOneBeyondFloatIsRefus
 
 namespace vitrum {
 namespace {
+
+// Debian's gltfpack 0.18 wrote scenes/meshes/glass_set.gltf quantized (KHR_mesh_quantization) to
+// tests/fuzz/corpus/gltf/glass_set_quantized.glb, and quantized and compressed (`-c`,
+// EXT_meshopt_compression) to glass_set_meshopt.glb. The compression is lossless: the two load to
+// the same triangles, their corners bit for bit; both hold the original's triangles and objects, within the
+// quantization's steps (14 bits over the 6-unit floor for positions).
+TEST(GltfAccessors, GltfpacksCompressedFileLoadsAsItsUncompressedOne) {
+    const fs::path corpus = fs::path(VITRUM_SOURCE_DIR) / "tests/fuzz/corpus/gltf";
+    const Scene quantized = loadScene(corpus / "glass_set_quantized.glb");
+    const Scene compressed = loadScene(corpus / "glass_set_meshopt.glb");
+    const Scene original = loadScene(fs::path(VITRUM_SOURCE_DIR) / "scenes/meshes/glass_set.gltf");
+    ASSERT_EQ(compressed.triangles.size(), quantized.triangles.size());
+    EXPECT_EQ(compressed.triangles.size(), original.triangles.size());
+    EXPECT_EQ(compressed.objectNames.size(), original.objectNames.size());
+    // The same triangles, each of the same object, with the same corners, in the same winding:
+    // gltfpack orders a compressed mesh's vertices its own way, and meshoptimizer's index codec may
+    // start a triangle at another corner, so each is keyed from its least corner. Normals are
+    // the file's or, where it has none (the gem), the corners' cross product, which rounds
+    // differently from another first corner.
+    auto triangles = [](const Scene& scene) {
+        std::multimap<std::vector<float>, std::vector<glm::vec3>> byCorners;
+        for (const Triangle& t : scene.triangles) {
+            const auto* p = t.position;
+            auto less = [](const glm::vec3& u, const glm::vec3& v) { return std::tie(u.x, u.y, u.z) < std::tie(v.x, v.y, v.z); };
+            const int first = less(p[1], p[0]) ? (less(p[2], p[1]) ? 2 : 1) : (less(p[2], p[0]) ? 2 : 0);
+            std::vector<float> key{float(t.object)};
+            std::vector<glm::vec3> normals;
+            for (int c = 0; c < 3; ++c) {
+                const int k = (first + c) % 3;
+                key.insert(key.end(), {p[k].x, p[k].y, p[k].z});
+                normals.push_back(t.normal[k]);
+            }
+            byCorners.emplace(std::move(key), std::move(normals));
+        }
+        return byCorners;
+    };
+    const auto a = triangles(compressed), b = triangles(quantized);
+    ASSERT_EQ(a.size(), b.size());
+    for (auto i = a.begin(), j = b.begin(); i != a.end(); ++i, ++j) {
+        ASSERT_EQ(i->first, j->first);
+        for (int c = 0; c < 3; ++c) EXPECT_LT(glm::length(i->second[c] - j->second[c]), 1e-6f);
+    }
+    const FloatBox before = worldBox(original), after = worldBox(compressed);
+    for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_NEAR(before.min[axis], after.min[axis], 1e-3f);
+        EXPECT_NEAR(before.max[axis], after.max[axis], 1e-3f);
+    }
+}
 
 // tests/fuzz/corpus/gltf/sparse_strided.gltf: three vertices 24 bytes apart (a byte stride with
 // padding between them), then a sparse accessor that replaces vertex 2, (0, 1, 0), by (0, 2, 0)
