@@ -18,8 +18,9 @@
 #include "common/error.h"
 #include "common/file_extension.h"
 #include "common/input_file.h"
+#include "scene/gltf_draco.h"
 #include "scene/gltf_errors.h"
-#include "scene/gltf_meshopt.h"
+#include "scene/gltf_compression.h"
 #include "scene/gltf_materials.h"
 #include "scene/instances.h"
 #include "scene/quote_input.h"
@@ -231,10 +232,10 @@ private:
         std::error_code ec;
         if (!fs::is_regular_file(file_, ec)) fail(fs::exists(file_, ec) ? "not a regular file" : "no such file");
         if (binary) checkGlbLength();
-        GltfMeshopt meshopt(file_);
+        GltfCompression compression(file_);
         const std::vector<unsigned char> document =
-            meshopt.prepare(readInputFile(file_, "the glTF file", kMaxGltfFileBytes), binary);
-        parser.SetFsCallbacks(meshopt.fileCallbacks());
+            compression.prepare(readInputFile(file_, "the glTF file", kMaxGltfFileBytes), binary);
+        parser.SetFsCallbacks(compression.fileCallbacks());
         const std::string baseDir = file_.parent_path().string();
         const bool ok =
             binary ? parser.LoadBinaryFromMemory(&model_, &errors, &warnings, document.data(), unsigned(document.size()), baseDir)
@@ -242,7 +243,7 @@ private:
                                                 unsigned(document.size()), baseDir);
         if (!ok || !errors.empty())
             fail(describeGltfErrors(file_, errors));
-        meshopt.decode(model_);
+        compression.decodeMeshopt(model_);
         std::istringstream lines(warnings);
         for (std::string w; std::getline(lines, w);)
             if (!w.empty()) warnAbout(w);
@@ -477,48 +478,9 @@ private:
                 warnAbout("morph targets are ignored: meshes are rendered without their weights");
                 warnedMorph_ = true;
             }
-            checkComponentType(primitive.attributes.at("POSITION"), where + ".attributes.POSITION", Attribute::Position);
-            const std::vector<double> positions = elements(primitive.attributes.at("POSITION"), 3, where + ".attributes.POSITION");
-            const std::size_t vertexCount = positions.size() / 3;
-            std::vector<double> normals, uvs;
-            if (auto n = primitive.attributes.find("NORMAL"); n != primitive.attributes.end()) {
-                checkComponentType(n->second, where + ".attributes.NORMAL", Attribute::Normal);
-                normals = elements(n->second, 3, where + ".attributes.NORMAL");
-                if (normals.size() != positions.size()) fail(where + " has a NORMAL for some vertices only");
-            }
-            if (auto t = primitive.attributes.find("TEXCOORD_0"); t != primitive.attributes.end()) {
-                checkComponentType(t->second, where + ".attributes.TEXCOORD_0", Attribute::TexCoord);
-                // glTF requires VEC2; assimp 5.2 writes VEC3 with a zero third: its first two read.
-                const bool vec3 = accessor(t->second, where + ".attributes.TEXCOORD_0").type == TINYGLTF_TYPE_VEC3;
-                uvs = elements(t->second, vec3 ? 3 : 2, where + ".attributes.TEXCOORD_0");
-                if (vec3) {
-                    for (std::size_t i = 0; i < uvs.size() / 3; ++i) {
-                        uvs[2 * i] = uvs[3 * i];
-                        uvs[2 * i + 1] = uvs[3 * i + 1];
-                    }
-                    uvs.resize(uvs.size() / 3 * 2);
-                }
-                if (uvs.size() / 2 != vertexCount) fail(where + " has a TEXCOORD_0 for some vertices only");
-            }
-            std::vector<std::size_t> corners;
-            if (primitive.indices >= 0) {
-                const tinygltf::Accessor& a = accessor(primitive.indices, where + ".indices");
-                if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-                    a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-                    a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-                    fail(where + " has indices that are not unsigned integers");
-                const std::vector<double> indices = elements(primitive.indices, 1, where + ".indices");
-                corners.reserve(indices.size());
-                for (double i : indices) {
-                    if (i >= double(vertexCount))
-                        fail(where + " uses vertex " + std::to_string(std::size_t(i)) + ", but it has " +
-                             std::to_string(vertexCount));
-                    corners.push_back(std::size_t(i));
-                }
-            } else {
-                corners.resize(vertexCount);
-                for (std::size_t i = 0; i < vertexCount; ++i) corners[i] = i;
-            }
+            const PrimitiveVertices vertices = readPrimitive(primitive, where);
+            const std::vector<double>&positions = vertices.positions, &normals = vertices.normals, &uvs = vertices.uvs;
+            const std::vector<std::size_t>& corners = vertices.corners;
             if (corners.size() % 3 != 0)
                 warnAbout(where + " has " + std::to_string(corners.size()) + " corners, not a multiple of 3: the last " +
                           std::to_string(corners.size() % 3) + " ignored");
@@ -564,6 +526,60 @@ private:
             }
         }
         if (anyTriangle) scene_.objectNames.push_back(file_.filename().string() + "/" + name);
+    }
+
+    // A primitive's vertices and triangles' corners: from its accessors, or decoded from its
+    // KHR_draco_mesh_compression data (whose accessors have no buffer views).
+    PrimitiveVertices readPrimitive(const tinygltf::Primitive& primitive, const std::string& where) const {
+        if (const auto draco = primitive.extensions.find("KHR_draco_mesh_compression"); draco != primitive.extensions.end()) {
+            try {
+                return decodeDracoPrimitive(model_, primitive, draco->second, where);
+            } catch (const std::invalid_argument& e) {
+                fail(e.what());
+            }
+        }
+        checkComponentType(primitive.attributes.at("POSITION"), where + ".attributes.POSITION", Attribute::Position);
+        PrimitiveVertices v;
+        v.positions = elements(primitive.attributes.at("POSITION"), 3, where + ".attributes.POSITION");
+        const std::size_t vertexCount = v.positions.size() / 3;
+        if (auto n = primitive.attributes.find("NORMAL"); n != primitive.attributes.end()) {
+            checkComponentType(n->second, where + ".attributes.NORMAL", Attribute::Normal);
+            v.normals = elements(n->second, 3, where + ".attributes.NORMAL");
+            if (v.normals.size() != v.positions.size()) fail(where + " has a NORMAL for some vertices only");
+        }
+        if (auto t = primitive.attributes.find("TEXCOORD_0"); t != primitive.attributes.end()) {
+            checkComponentType(t->second, where + ".attributes.TEXCOORD_0", Attribute::TexCoord);
+            // glTF requires VEC2; assimp 5.2 writes VEC3 with a zero third: its first two read.
+            const bool vec3 = accessor(t->second, where + ".attributes.TEXCOORD_0").type == TINYGLTF_TYPE_VEC3;
+            v.uvs = elements(t->second, vec3 ? 3 : 2, where + ".attributes.TEXCOORD_0");
+            if (vec3) {
+                for (std::size_t i = 0; i < v.uvs.size() / 3; ++i) {
+                    v.uvs[2 * i] = v.uvs[3 * i];
+                    v.uvs[2 * i + 1] = v.uvs[3 * i + 1];
+                }
+                v.uvs.resize(v.uvs.size() / 3 * 2);
+            }
+            if (v.uvs.size() / 2 != vertexCount) fail(where + " has a TEXCOORD_0 for some vertices only");
+        }
+        if (primitive.indices >= 0) {
+            const tinygltf::Accessor& a = accessor(primitive.indices, where + ".indices");
+            if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                fail(where + " has indices that are not unsigned integers");
+            const std::vector<double> indices = elements(primitive.indices, 1, where + ".indices");
+            v.corners.reserve(indices.size());
+            for (double i : indices) {
+                if (i >= double(vertexCount))
+                    fail(where + " uses vertex " + std::to_string(std::size_t(i)) + ", but it has " +
+                         std::to_string(vertexCount));
+                v.corners.push_back(std::size_t(i));
+            }
+        } else {
+            v.corners.resize(vertexCount);
+            for (std::size_t i = 0; i < vertexCount; ++i) v.corners[i] = i;
+        }
+        return v;
     }
 
     // KHR_lights_punctual: a point light is colour times intensity with the inverse-square

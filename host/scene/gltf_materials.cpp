@@ -40,7 +40,8 @@ bool isReadGltfExtension(const std::string& name) {
                                                "KHR_materials_ior",          "KHR_materials_specular",
                                                "KHR_materials_dispersion",   "KHR_lights_punctual",
                                                "KHR_texture_transform",      "KHR_materials_pbrSpecularGlossiness",
-                                               "KHR_mesh_quantization",      "EXT_meshopt_compression"};
+                                               "KHR_mesh_quantization",      "EXT_meshopt_compression",
+                                               "KHR_draco_mesh_compression"};
     return read.count(name) != 0;
 }
 

@@ -1,4 +1,4 @@
-#include "scene/gltf_meshopt.h"
+#include "scene/gltf_compression.h"
 
 #include <cmath>
 #include <cstdint>
@@ -13,7 +13,8 @@
 namespace vitrum {
 namespace {
 
-constexpr const char* kExtension = "EXT_meshopt_compression";
+constexpr const char* kMeshopt = "EXT_meshopt_compression";
+constexpr const char* kDraco = "KHR_draco_mesh_compression";
 // A fallback buffer's uri: a name no file has (a control character), with the buffer's index.
 constexpr std::string_view kFallbackUri = "\x01meshopt-fallback-";
 
@@ -49,9 +50,63 @@ void appendU32(std::vector<unsigned char>& bytes, std::uint32_t value) {
 
 }  // namespace
 
-void GltfMeshopt::fail(const std::string& message) const { throw inputError(file_, 0, message); }
+void GltfCompression::fail(const std::string& message) const { throw inputError(file_, 0, message); }
 
-std::vector<unsigned char> GltfMeshopt::prepare(std::vector<unsigned char> document, bool binary) {
+bool GltfCompression::markFallbackBuffers(nlohmann::json& doc) {
+    if (!doc.contains("buffers") || !doc["buffers"].is_array()) return false;
+    nlohmann::json& buffers = doc["buffers"];
+    for (std::size_t i = 0; i < buffers.size(); ++i) {
+        nlohmann::json& buffer = buffers[i];
+        if (!buffer.is_object() || buffer.contains("uri") || !buffer.contains("byteLength") ||
+            !buffer["byteLength"].is_number_unsigned())
+            continue;
+        const nlohmann::json* extension = nullptr;
+        if (buffer.contains("extensions") && buffer["extensions"].is_object() && buffer["extensions"].contains(kMeshopt))
+            extension = &buffer["extensions"][kMeshopt];
+        if (!extension || !extension->is_object() || extension->value("fallback", false) != true) continue;
+        fallbackLengths_[int(i)] = buffer["byteLength"].get<std::size_t>();
+        buffer["uri"] = std::string(kFallbackUri) + std::to_string(i);
+        buffer["byteLength"] = 1;
+    }
+    return !fallbackLengths_.empty();
+}
+
+// Each indices accessor of a Draco primitive that has no buffer view gets one of one byte in the
+// buffer of the primitive's compressed data (or buffer 0): tinygltf refuses indices without one.
+bool GltfCompression::giveDracoIndicesAView(nlohmann::json& doc) {
+    if (!doc.contains("meshes") || !doc["meshes"].is_array() || !doc.contains("accessors") ||
+        !doc["accessors"].is_array() || !doc.contains("bufferViews") || !doc["bufferViews"].is_array())
+        return false;
+    nlohmann::json& accessors = doc["accessors"];
+    nlohmann::json& views = doc["bufferViews"];
+    bool given = false;
+    for (nlohmann::json& mesh : doc["meshes"]) {
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+        for (nlohmann::json& primitive : mesh["primitives"]) {
+            if (!primitive.is_object() || !primitive.contains("indices") || !primitive["indices"].is_number_unsigned() ||
+                !primitive.contains("extensions") || !primitive["extensions"].is_object() ||
+                !primitive["extensions"].contains(kDraco))
+                continue;
+            const std::size_t indices = primitive["indices"].get<std::size_t>();
+            if (indices >= accessors.size() || !accessors[indices].is_object() || accessors[indices].contains("bufferView"))
+                continue;
+            const nlohmann::json& draco = primitive["extensions"][kDraco];
+            std::size_t buffer = 0;
+            if (draco.is_object() && draco.contains("bufferView") && draco["bufferView"].is_number_unsigned() &&
+                draco["bufferView"].get<std::size_t>() < views.size()) {
+                const nlohmann::json& view = views[draco["bufferView"].get<std::size_t>()];
+                if (view.is_object() && view.contains("buffer") && view["buffer"].is_number_unsigned())
+                    buffer = view["buffer"].get<std::size_t>();
+            }
+            views.push_back({{"buffer", buffer}, {"byteLength", 1}});
+            accessors[indices]["bufferView"] = views.size() - 1;
+            given = true;
+        }
+    }
+    return given;
+}
+
+std::vector<unsigned char> GltfCompression::prepare(std::vector<unsigned char> document, bool binary) {
     // A .glb's JSON is its first chunk (glTF 2.0, 4.4.3); one that is malformed is left for
     // tinygltf to name.
     std::size_t jsonBegin = 0, jsonLength = document.size();
@@ -62,24 +117,12 @@ std::vector<unsigned char> GltfMeshopt::prepare(std::vector<unsigned char> docum
         if (jsonLength > document.size() - 20) return document;
     }
     const std::string_view text(reinterpret_cast<const char*>(document.data()) + jsonBegin, jsonLength);
-    if (text.find(kExtension) == std::string_view::npos) return document;
+    if (text.find(kMeshopt) == std::string_view::npos && text.find(kDraco) == std::string_view::npos) return document;
     nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
-    if (doc.is_discarded() || !doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array()) return document;
-    nlohmann::json& buffers = doc["buffers"];
-    for (std::size_t i = 0; i < buffers.size(); ++i) {
-        nlohmann::json& buffer = buffers[i];
-        if (!buffer.is_object() || buffer.contains("uri") || !buffer.contains("byteLength") ||
-            !buffer["byteLength"].is_number_unsigned())
-            continue;
-        const nlohmann::json* extension = nullptr;
-        if (buffer.contains("extensions") && buffer["extensions"].is_object() && buffer["extensions"].contains(kExtension))
-            extension = &buffer["extensions"][kExtension];
-        if (!extension || !extension->is_object() || extension->value("fallback", false) != true) continue;
-        fallbackLengths_[int(i)] = buffer["byteLength"].get<std::size_t>();
-        buffer["uri"] = std::string(kFallbackUri) + std::to_string(i);
-        buffer["byteLength"] = 1;
-    }
-    if (fallbackLengths_.empty()) return document;
+    if (doc.is_discarded() || !doc.is_object()) return document;
+    const bool marked = markFallbackBuffers(doc);
+    const bool given = giveDracoIndicesAView(doc);
+    if (!marked && !given) return document;
     std::string json = doc.dump();
     if (!binary) return std::vector<unsigned char>(json.begin(), json.end());
     while (json.size() % 4) json += ' ';
@@ -96,11 +139,11 @@ std::vector<unsigned char> GltfMeshopt::prepare(std::vector<unsigned char> docum
     return glb;
 }
 
-tinygltf::FsCallbacks GltfMeshopt::fileCallbacks() {
+tinygltf::FsCallbacks GltfCompression::fileCallbacks() {
     return tinygltf::FsCallbacks{&fileExists, &expandFilePath, &readWholeFile, &tinygltf::WriteWholeFile, this};
 }
 
-void GltfMeshopt::decode(tinygltf::Model& model) const {
+void GltfCompression::decodeMeshopt(tinygltf::Model& model) const {
     struct View {
         int index;
         std::size_t source, sourceOffset, sourceLength, stride, count;
@@ -110,10 +153,10 @@ void GltfMeshopt::decode(tinygltf::Model& model) const {
     std::map<int, std::size_t> decodedInto;  // a fallback buffer -> the bytes its views decode to
     for (std::size_t i = 0; i < model.bufferViews.size(); ++i) {
         const tinygltf::BufferView& view = model.bufferViews[i];
-        const auto found = view.extensions.find(kExtension);
+        const auto found = view.extensions.find(kMeshopt);
         if (found == view.extensions.end()) continue;
         const tinygltf::Value& e = found->second;
-        const std::string where = "bufferViews[" + std::to_string(i) + "]: " + kExtension;
+        const std::string where = "bufferViews[" + std::to_string(i) + "]: " + kMeshopt;
         auto count = [&](const char* key, bool required) -> std::size_t {
             if (!e.Has(key)) {
                 if (required) fail(where + " has no " + key);
@@ -170,7 +213,7 @@ void GltfMeshopt::decode(tinygltf::Model& model) const {
     std::vector<unsigned char> decoded;
     for (const View& v : views) {
         tinygltf::BufferView& view = model.bufferViews[std::size_t(v.index)];
-        const std::string where = "bufferViews[" + std::to_string(v.index) + "]: " + kExtension;
+        const std::string where = "bufferViews[" + std::to_string(v.index) + "]: " + kMeshopt;
         decoded.assign(v.count * v.stride, 0);
         const unsigned char* source = model.buffers[v.source].data.data() + v.sourceOffset;
         const int status =
