@@ -39,8 +39,7 @@ PrimitiveVertices decodeDracoPrimitive(const tinygltf::Model& model, const tinyg
     const tinygltf::Value& attributes = extension.Get("attributes");
     PrimitiveVertices out;
     auto read = [&](const char* name, int components, std::vector<double>& values) {
-        if (!primitive.attributes.count(name)) return;
-        if (!attributes.Has(name)) fail(" holds no " + std::string(name) + ", which the primitive has");
+        if (!primitive.attributes.count(name) || !attributes.Has(name)) return;
         const draco::PointAttribute* attribute = mesh->GetAttributeByUniqueId(std::uint32_t(index(attributes, name)));
         if (!attribute || attribute->num_components() < components)
             fail("'s " + std::string(name) + " is not an attribute of " + std::to_string(components) +
@@ -54,7 +53,6 @@ PrimitiveVertices decodeDracoPrimitive(const tinygltf::Model& model, const tinyg
         }
     };
     read("POSITION", 3, out.positions);
-    if (out.positions.empty() && mesh->num_points() > 0) fail(" holds no POSITION");
     read("NORMAL", 3, out.normals);
     read("TEXCOORD_0", 2, out.uvs);
     out.corners.reserve(std::size_t(mesh->num_faces()) * 3);

@@ -21,8 +21,9 @@ struct PrimitiveVertices {
 };
 
 // Decodes the primitive's KHR_draco_mesh_compression `extension` of `model`; `where` names the
-// primitive. Throws std::invalid_argument with the reason (after `where`) where the extension or
-// its data is wrong.
+// primitive. An attribute the extension does not name is left empty: the file stores it
+// uncompressed, in its accessor. Throws std::invalid_argument with the reason (after `where`)
+// where the extension or its data is wrong.
 PrimitiveVertices decodeDracoPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
                                     const tinygltf::Value& extension, const std::string& where);
 

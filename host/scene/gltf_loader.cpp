@@ -18,9 +18,9 @@
 #include "common/error.h"
 #include "common/file_extension.h"
 #include "common/input_file.h"
+#include "scene/gltf_compression.h"
 #include "scene/gltf_draco.h"
 #include "scene/gltf_errors.h"
-#include "scene/gltf_compression.h"
 #include "scene/gltf_materials.h"
 #include "scene/instances.h"
 #include "scene/quote_input.h"
@@ -529,25 +529,29 @@ private:
     }
 
     // A primitive's vertices and triangles' corners: from its accessors, or decoded from its
-    // KHR_draco_mesh_compression data (whose accessors have no buffer views).
+    // KHR_draco_mesh_compression data (whose accessors have no buffer views), with the attributes
+    // that data does not hold from their accessors.
     PrimitiveVertices readPrimitive(const tinygltf::Primitive& primitive, const std::string& where) const {
-        if (const auto draco = primitive.extensions.find("KHR_draco_mesh_compression"); draco != primitive.extensions.end()) {
+        PrimitiveVertices v;
+        const auto draco = primitive.extensions.find("KHR_draco_mesh_compression");
+        if (draco != primitive.extensions.end()) {
             try {
-                return decodeDracoPrimitive(model_, primitive, draco->second, where);
+                v = decodeDracoPrimitive(model_, primitive, draco->second, where);
             } catch (const std::invalid_argument& e) {
                 fail(e.what());
             }
+            if (v.positions.empty()) fail(where + ": KHR_draco_mesh_compression holds no POSITION");
+        } else {
+            checkComponentType(primitive.attributes.at("POSITION"), where + ".attributes.POSITION", Attribute::Position);
+            v.positions = elements(primitive.attributes.at("POSITION"), 3, where + ".attributes.POSITION");
         }
-        checkComponentType(primitive.attributes.at("POSITION"), where + ".attributes.POSITION", Attribute::Position);
-        PrimitiveVertices v;
-        v.positions = elements(primitive.attributes.at("POSITION"), 3, where + ".attributes.POSITION");
         const std::size_t vertexCount = v.positions.size() / 3;
-        if (auto n = primitive.attributes.find("NORMAL"); n != primitive.attributes.end()) {
+        if (auto n = primitive.attributes.find("NORMAL"); n != primitive.attributes.end() && v.normals.empty()) {
             checkComponentType(n->second, where + ".attributes.NORMAL", Attribute::Normal);
             v.normals = elements(n->second, 3, where + ".attributes.NORMAL");
             if (v.normals.size() != v.positions.size()) fail(where + " has a NORMAL for some vertices only");
         }
-        if (auto t = primitive.attributes.find("TEXCOORD_0"); t != primitive.attributes.end()) {
+        if (auto t = primitive.attributes.find("TEXCOORD_0"); t != primitive.attributes.end() && v.uvs.empty()) {
             checkComponentType(t->second, where + ".attributes.TEXCOORD_0", Attribute::TexCoord);
             // glTF requires VEC2; assimp 5.2 writes VEC3 with a zero third: its first two read.
             const bool vec3 = accessor(t->second, where + ".attributes.TEXCOORD_0").type == TINYGLTF_TYPE_VEC3;
@@ -561,6 +565,7 @@ private:
             }
             if (v.uvs.size() / 2 != vertexCount) fail(where + " has a TEXCOORD_0 for some vertices only");
         }
+        if (draco != primitive.extensions.end()) return v;  // its corners are the Draco mesh's
         if (primitive.indices >= 0) {
             const tinygltf::Accessor& a = accessor(primitive.indices, where + ".indices");
             if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&

@@ -14,6 +14,7 @@
 #include <tuple>
 #include <vector>
 
+#include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
 #include <meshoptimizer.h>
@@ -500,6 +501,53 @@ TEST_F(GltfLoader, DracoCompressedPrimitivesReadAsTheUncompressedOnes) {
                   std::string::npos)
             << e.what();
     }
+}
+
+// An attribute the Draco data does not hold is stored uncompressed, in its accessor, in the order
+// of the decoded vertices (KHR_draco_mesh_compression's attributes): texture coordinates (x, y) of
+// each decoded vertex's position, beside Draco-compressed positions.
+TEST_F(GltfLoader, AnAttributeOutsideTheDracoDataComesFromItsAccessor) {
+    draco::TriangleSoupMeshBuilder builder;
+    builder.Start(2);
+    const int p = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+    const float corners[2][3][3] = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, {{0, 0, 0}, {1, 1, 0}, {0, 1, 0}}};
+    for (int f = 0; f < 2; ++f)
+        builder.SetAttributeValuesForFace(p, draco::FaceIndex(f), corners[f][0], corners[f][1], corners[f][2]);
+    const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+    draco::Encoder encoder;
+    draco::EncoderBuffer encoded;
+    ASSERT_TRUE(encoder.EncodeMeshToBuffer(*mesh, &encoded).ok());
+    // The vertices in the order a decoder gives them, and their texture coordinates.
+    draco::DecoderBuffer input;
+    input.Init(encoded.data(), encoded.size());
+    draco::Decoder decoder;
+    auto decoded = decoder.DecodeMeshFromBuffer(&input);
+    ASSERT_TRUE(decoded.ok());
+    const std::unique_ptr<draco::Mesh> order = std::move(decoded).value();
+    const draco::PointAttribute* position = order->GetNamedAttribute(draco::GeometryAttribute::POSITION);
+    std::vector<float> uvs;
+    for (draco::PointIndex i(0); i < order->num_points(); ++i) {
+        float xyz[3];
+        position->ConvertValue<float>(position->mapped_index(i), 3, xyz);
+        uvs.insert(uvs.end(), {xyz[0], xyz[1]});
+    }
+    GltfBuilder b;
+    const int uvAccessor = b.accessor(uvs, 5126, "VEC2", order->num_points());
+    const std::size_t offset = b.append(std::vector<unsigned char>(encoded.data(), encoded.data() + encoded.size()));
+    b.doc()["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", encoded.size()}});
+    b.doc()["accessors"].push_back({{"componentType", 5126}, {"count", order->num_points()}, {"type", "VEC3"}});
+    b.doc()["accessors"].push_back({{"componentType", 5125}, {"count", 6}, {"type", "SCALAR"}});
+    const json draco = {{"bufferView", b.doc()["bufferViews"].size() - 1},
+                        {"attributes", {{"POSITION", mesh->attribute(p)->unique_id()}}}};
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", 1}, {"TEXCOORD_0", uvAccessor}}},
+                             {"indices", 2},
+                             {"extensions", {{"KHR_draco_mesh_compression", draco}}}})}});
+    b.doc()["extensionsUsed"] = b.doc()["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    const Scene scene = load(b.write(dir_ / "mixed.gltf"));
+    ASSERT_EQ(scene.triangles.size(), 2u);
+    // glTF's (x, y, z) is vitrum's (x, -z, y), and vitrum's v is 1 - glTF's.
+    for (const Triangle& t : scene.triangles)
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(t.uv[c], glm::vec2(t.position[c].x, 1.0f - t.position[c].z));
 }
 
 // Every index component type the spec allows (unsigned byte, short, int) and no indices at all
