@@ -1,5 +1,5 @@
 // Reading and writing images: PNG and the other 8-bit formats through stb (sRGB), binary PNM by hand
-// (sRGB, pnm_file.h), Radiance HDR through stb (linear), PFM by hand (linear), OpenEXR through its
+// (sRGB, pnm_file.h), WebP through libwebp (sRGB, webp_file.h), Radiance HDR through stb (linear), PFM by hand (linear), OpenEXR through its
 // library (linear, openexr_file.h). Writes go to a temporary file next to the target that is
 // renamed into place, so a failed write never leaves a partial output behind.
 #include <algorithm>
@@ -32,6 +32,7 @@
 #include "image/pnm_file.h"
 #include "image/radiance_extent.h"
 #include "image/srgb.h"
+#include "image/webp_file.h"
 
 namespace vitrum {
 namespace {
@@ -245,7 +246,7 @@ bool isPngOrJpeg(const FileBytes& file) {
 
 Image readSrgb(const fs::path& path, const FileBytes& file) {
     if (!isPngOrJpeg(file))
-        throw inputError(path, 0, "cannot read image: not PNG, JPEG, Radiance HDR, PFM, binary PNM or OpenEXR");
+        throw inputError(path, 0, "cannot read image: not PNG, JPEG, WebP, Radiance HDR, PFM, binary PNM or OpenEXR");
     if (const auto problem = jpegHuffmanTableProblem(file.bytes); problem && !isPng(file.bytes))
         throw inputError(path, 0, "cannot read JPEG image: " + *problem);
     int w = 0;
@@ -367,6 +368,7 @@ Image decodeImage(const fs::path& name, std::vector<unsigned char> bytes, const 
     if (const auto problem = pngChunkPastTheEnd(file.bytes))
         throw inputError(name, 0, "cannot read PNG image: cut short: " + *problem);
     if (isBinaryPnm(file.bytes)) return readPnm(name, file.bytes, limit);
+    if (isWebp(file.bytes)) return readWebp(name, file.bytes, limit);
     checkStbDeclaredSize(name, file, limit);
     if (stbi_is_hdr_from_memory(file.data(), file.size())) return readLinearHdr(name, file);
     return readSrgb(name, file);

@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <optional>
 #include <set>
+#include <string_view>
+#include <vector>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -33,6 +37,27 @@ fs::path uriPath(const std::string& uri) {
     return fs::path(path);
 }
 
+// RFC 4648 base64 (a data URI's payload); nothing where a character is not of its alphabet.
+std::optional<std::vector<unsigned char>> base64Bytes(std::string_view text) {
+    while (!text.empty() && text.back() == '=') text.remove_suffix(1);
+    std::vector<unsigned char> bytes;
+    bytes.reserve(text.size() * 3 / 4);
+    std::uint32_t bits = 0;
+    int count = 0;
+    for (const char c : text) {
+        const int value = c >= 'A' && c <= 'Z'   ? c - 'A'
+                          : c >= 'a' && c <= 'z' ? c - 'a' + 26
+                          : c >= '0' && c <= '9' ? c - '0' + 52
+                          : c == '+'             ? 62
+                          : c == '/'             ? 63
+                                                 : -1;
+        if (value < 0) return std::nullopt;
+        bits = (bits << 6) | std::uint32_t(value);
+        if ((count += 6) >= 8) bytes.push_back(static_cast<unsigned char>(bits >> (count -= 8)));
+    }
+    return bytes;
+}
+
 }  // namespace
 
 bool isReadGltfExtension(const std::string& name) {
@@ -41,7 +66,7 @@ bool isReadGltfExtension(const std::string& name) {
                                                "KHR_materials_dispersion",   "KHR_lights_punctual",
                                                "KHR_texture_transform",      "KHR_materials_pbrSpecularGlossiness",
                                                "KHR_mesh_quantization",      "EXT_meshopt_compression",
-                                               "KHR_draco_mesh_compression"};
+                                               "KHR_draco_mesh_compression", "EXT_texture_webp"};
     return read.count(name) != 0;
 }
 
@@ -274,7 +299,15 @@ int GltfMaterials::baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3
         ignored.push_back("baseColorTexture's TEXCOORD_" + std::to_string(texCoord) + " (TEXCOORD_0 used)");
     if (std::size_t(info.index) >= model_.textures.size())
         fail(quoted + " names textures[" + std::to_string(info.index) + "], which does not exist");
-    const int source = model_.textures[std::size_t(info.index)].source;
+    // EXT_texture_webp names a WebP image in the texture's extension, beside or instead of its
+    // source (a PNG or JPEG fallback); vitrum reads WebP, so the extension's image is taken.
+    const tinygltf::Texture& texture = model_.textures[std::size_t(info.index)];
+    int source = texture.source;
+    if (const auto webp = texture.extensions.find("EXT_texture_webp"); webp != texture.extensions.end()) {
+        if (!webp->second.Has("source") || !webp->second.Get("source").IsInt())
+            fail(quoted + ": textures[" + std::to_string(info.index) + "]'s EXT_texture_webp has no source");
+        source = webp->second.Get("source").Get<int>();
+    }
     if (source < 0 || std::size_t(source) >= model_.images.size()) {
         warnAbout(quoted + ": its texture has no image it can read; using baseColorFactor");
         return -1;
@@ -287,7 +320,16 @@ int GltfMaterials::baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3
                               : file_.parent_path() / uriPath(image.uri);
     int index = -1;
     try {
+        // tinygltf 2.7 decodes the data URIs of PNG, JPEG, BMP and GIF only: an image/webp one
+        // comes as its uri.
+        std::optional<std::vector<unsigned char>> dataUri;
+        if (!image.as_is && image.uri.starts_with("data:")) {
+            const std::size_t payload = image.uri.find(";base64,");
+            if (payload != std::string::npos) dataUri = base64Bytes(std::string_view(image.uri).substr(payload + 8));
+            if (!dataUri) throw inputError(name, 0, "a data URI that is not base64");
+        }
         Image decoded = image.as_is ? decodeImage(name, image.image, texelLimit_.leftAfter(scene_))
+                        : dataUri   ? decodeImage(name, std::move(*dataUri), texelLimit_.leftAfter(scene_))
                                     : readImage(name, texelLimit_.leftAfter(scene_));
         for (glm::vec3& texel : decoded.pixels) texel *= factor;
         index = int(scene_.textures.size());

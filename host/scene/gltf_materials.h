@@ -21,7 +21,7 @@
 namespace vitrum {
 
 // The extensions whose meaning vitrum renders (docs/scene-format.md, "glTF 2.0"): the materials'
-// here, KHR_texture_transform, KHR_lights_punctual, and KHR_mesh_quantization,
+// here, KHR_texture_transform, EXT_texture_webp, KHR_lights_punctual, and KHR_mesh_quantization,
 // EXT_meshopt_compression and KHR_draco_mesh_compression (the loader's geometry). A file that requires any other is refused,
 // one that only uses it is read without it, with a warning.
 bool isReadGltfExtension(const std::string& name);

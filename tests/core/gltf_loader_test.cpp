@@ -18,6 +18,7 @@
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
 #include <meshoptimizer.h>
+#include <webp/encode.h>
 #include <nlohmann/json.hpp>
 
 #include "analysis/scene_features.h"
@@ -689,6 +690,30 @@ TEST_F(GltfLoader, BaseColourFactorMultipliesItsEmbeddedTexture) {
     // glTF's v runs down from the image's top row; vitrum's up from the bottom (render model).
     EXPECT_EQ(scene.triangles[0].uv[0], glm::vec2(0, 1));
     EXPECT_EQ(scene.triangles[0].uv[2], glm::vec2(0, 0));
+}
+
+// EXT_texture_webp: a texture whose extension names a WebP image (in an image/webp data URI,
+// which tinygltf 2.7 does not decode itself) beside a PNG fallback as its source: the WebP is read.
+TEST_F(GltfLoader, AWebpTextureIsReadBeforeItsFallback) {
+    Image fallback(1, 1);
+    fallback.pixels = {glm::vec3(0.0f)};
+    GltfBuilder b;
+    b.embedTexture(fallback, dir_ / "fallback.png");
+    const std::uint8_t rgb[3] = {255, 128, 0};
+    std::uint8_t* encoded = nullptr;
+    const std::size_t size = WebPEncodeLosslessRGB(rgb, 1, 1, 3, &encoded);
+    ASSERT_GT(size, 0u);
+    b.doc()["images"].push_back({{"uri", "data:image/webp;base64," + base64(std::vector<unsigned char>(encoded, encoded + size))}});
+    WebPFree(encoded);
+    b.doc()["textures"][0]["extensions"] = {{"EXT_texture_webp", {{"source", 1}}}};
+    b.doc()["extensionsUsed"] = {"EXT_texture_webp"};
+    const int material = b.material({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.0}}}});
+    const int uvs = b.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, 5126, "VEC2", 3);
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}, {"TEXCOORD_0", uvs}}}, {"material", material}})}});
+    const Scene scene = load(b.write(dir_ / "webp.gltf"));
+    ASSERT_EQ(scene.textures.size(), 1u);
+    const glm::vec3 texel = scene.textures[std::size_t(scene.materials[0].diffuseTexture)].texels[0];
+    EXPECT_EQ(texel, glm::vec3(1.0f, srgbToLinear(128.0f / 255.0f), 0.0f));
 }
 
 // KHR_texture_transform on the base colour texture: uv' = T R S uv with the specification's

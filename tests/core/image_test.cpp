@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <webp/encode.h>
 
 #include "common/error.h"
 #include "image/image.h"
@@ -62,6 +63,36 @@ std::string exceptionMessage(const std::function<void()>& f) {
         return e.what();
     }
     return "<no InputError>";
+}
+
+// WebP (webp_file.h): libwebp's own lossless encoder writes 8-bit sRGB values that read back as
+// exactly their linear values, row 0 the top row, whatever the file's name; a file cut short is
+// an InputError naming it.
+TEST_F(ImageIoTest, LosslessWebpReadsAsItsSrgbValues) {
+    const int width = 5, height = 3;
+    std::vector<std::uint8_t> rgb(width * height * 3);
+    for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = std::uint8_t(i * 17 % 256);
+    std::uint8_t* encoded = nullptr;
+    const std::size_t size = WebPEncodeLosslessRGB(rgb.data(), width, height, width * 3, &encoded);
+    ASSERT_GT(size, 0u);
+    const std::string bytes(reinterpret_cast<const char*>(encoded), size);
+    WebPFree(encoded);
+    const fs::path path = dir_ / "texture.webp", misnamed = dir_ / "texture.png", cut = dir_ / "cut.webp";
+    for (const fs::path& file : {path, misnamed}) std::ofstream(file, std::ios::binary) << bytes;
+    std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    for (const fs::path& file : {path, misnamed}) {
+        const Image image = readImage(file);
+        ASSERT_EQ(image.width, std::uint32_t(width));
+        ASSERT_EQ(image.height, std::uint32_t(height));
+        for (std::size_t i = 0; i < image.pixels.size(); ++i)
+            for (int c = 0; c < 3; ++c) EXPECT_EQ(image.pixels[i][c], srgbToLinear(float(rgb[3 * i + std::size_t(c)]) / 255.0f));
+    }
+    try {
+        readImage(cut);
+        ADD_FAILURE() << "no InputError";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("cut.webp: cannot read WebP image"), std::string::npos) << e.what();
+    }
 }
 
 TEST_F(ImageIoTest, PngRoundTripWithinQuantisation) {
@@ -180,7 +211,7 @@ TEST_F(ImageIoTest, ImageFormatsBeyondTheDocumentedOnesAreRefused) {
     const fs::path path = dir_ / "map.bmp";
     writeBytes(path, bmp);
     const std::string message = exceptionMessage([&] { readImage(path); });
-    EXPECT_NE(message.find("map.bmp: cannot read image: not PNG, JPEG, Radiance HDR, PFM, binary PNM or OpenEXR"),
+    EXPECT_NE(message.find("map.bmp: cannot read image: not PNG, JPEG, WebP, Radiance HDR, PFM, binary PNM or OpenEXR"),
               std::string::npos)
         << message;
 }
