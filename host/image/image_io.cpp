@@ -247,8 +247,6 @@ bool isPngOrJpeg(const FileBytes& file) {
 Image readSrgb(const fs::path& path, const FileBytes& file) {
     if (!isPngOrJpeg(file))
         throw inputError(path, 0, "cannot read image: not PNG, JPEG, WebP, Radiance HDR, PFM, binary PNM or OpenEXR");
-    if (const auto problem = jpegHuffmanTableProblem(file.bytes); problem && !isPng(file.bytes))
-        throw inputError(path, 0, "cannot read JPEG image: " + *problem);
     int w = 0;
     int h = 0;
     int n = 0;
@@ -369,6 +367,9 @@ Image decodeImage(const fs::path& name, std::vector<unsigned char> bytes, const 
         throw inputError(name, 0, "cannot read PNG image: cut short: " + *problem);
     if (isBinaryPnm(file.bytes)) return readPnm(name, file.bytes, limit);
     if (isWebp(file.bytes)) return readWebp(name, file.bytes, limit);
+    // Before stb reads any header: stb_image_info builds a JPEG's Huffman tables too.
+    if (const auto problem = jpegHuffmanTableProblem(file.bytes); problem && !isPng(file.bytes))
+        throw inputError(name, 0, "cannot read JPEG image: " + *problem);
     checkStbDeclaredSize(name, file, limit);
     if (stbi_is_hdr_from_memory(file.data(), file.size())) return readLinearHdr(name, file);
     return readSrgb(name, file);

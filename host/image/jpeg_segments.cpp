@@ -1,5 +1,6 @@
 #include "image/jpeg_segments.h"
 
+#include <algorithm>
 #include <cstddef>
 
 namespace vitrum {
@@ -34,20 +35,23 @@ std::optional<std::string> jpegHuffmanTableProblem(const std::vector<unsigned ch
         }
         if (pos + 4 > n) return std::nullopt;
         const std::size_t length = std::size_t(jpeg[pos + 2]) << 8 | jpeg[pos + 3];
-        if (length < 2 || pos + 2 + length > n) return std::nullopt;
+        if (length < 2) return std::nullopt;
         if (marker == kDht) {
             // Tables of: class and destination (1 byte), the codes of each length 1-16, their symbols.
+            // A segment that runs past the end of the file is checked too, as far as the file goes:
+            // stb builds its tables from what is there (and zeros beyond; found by fuzzing).
             std::size_t table = pos + 4;
-            const std::size_t end = pos + 2 + length;
-            while (table + 17 <= end) {
+            const std::size_t end = std::min(pos + 2 + length, n);
+            while (table + 1 < end) {
                 std::size_t codes = 0;
-                for (std::size_t i = 1; i <= 16; ++i) codes += jpeg[table + i];
+                for (std::size_t i = table + 1; i <= table + 16 && i < n; ++i) codes += jpeg[i];
                 if (codes > 256)
                     return "a Huffman table (DHT segment at byte " + std::to_string(pos) + ") declares " +
                            std::to_string(codes) + " codes, more than a JPEG table holds (256)";
                 table += 17 + codes;
             }
         }
+        if (pos + 2 + length > n) return std::nullopt;
         pos += 2 + length;
     }
     return std::nullopt;
