@@ -454,7 +454,7 @@ Bvh buildSceneBvh(const Scene& scene, const std::function<void(double)>& progres
     // The top level: one leaf an instance (the world triangles' tree as an instance of its own).
     // A copy's box is the union of 64 upper boxes of its mesh's tree moved into the world, which
     // fits a turned copy more tightly than its moved mesh box (docs/gpu-design.md, "Boxes that fit
-    // turned copies": 256 parts cost 3.5x as much for little more).
+    // turned copies", which also says why 64).
     const std::uint32_t meshTreeOffset = worldCount > 0 ? 1 : 0;
     std::vector<std::vector<FloatBox>> meshCuts;
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) meshCuts.push_back(treeCut(trees[meshTreeOffset + m], 64));

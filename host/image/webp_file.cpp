@@ -24,12 +24,13 @@ Image readWebp(const std::filesystem::path& path, const std::vector<unsigned cha
     limit.check(path, "image", std::uint64_t(features.width), std::uint64_t(features.height));
     int width = 0, height = 0;
     const std::unique_ptr<std::uint8_t, void (*)(void*)> rgb(WebPDecodeRGB(bytes.data(), bytes.size(), &width, &height),
-                                                            WebPFree);
+                                                             WebPFree);
     if (!rgb) throw inputError(path, 0, "cannot read WebP image: corrupt or truncated data");
     if (width != features.width || height != features.height)
-        throw inputError(path, 0, "cannot read WebP image: decoded as " + std::to_string(width) + "x" +
-                                      std::to_string(height) + " pixels, but its header declares " +
-                                      std::to_string(features.width) + "x" + std::to_string(features.height));
+        throw inputError(path, 0,
+                         "cannot read WebP image: decoded as " + std::to_string(width) + "x" + std::to_string(height) +
+                             " pixels, but its header declares " + std::to_string(features.width) + "x" +
+                             std::to_string(features.height));
     float table[256];
     for (int i = 0; i < 256; ++i) table[i] = srgbToLinear(float(i) / 255.0f);
     Image image(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));

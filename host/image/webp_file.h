@@ -16,6 +16,7 @@ bool isWebp(const std::vector<unsigned char>& bytes);
 // The image in the bytes of the file at `path`, its declared size checked before it is decoded
 // (declared_size.h). Throws InputError naming the file for a corrupt, truncated or animated file,
 // and ImageTooLarge for one beyond `limit`.
-Image readWebp(const std::filesystem::path& path, const std::vector<unsigned char>& bytes, const PixelLimit& limit = {});
+Image readWebp(const std::filesystem::path& path, const std::vector<unsigned char>& bytes,
+               const PixelLimit& limit = {});
 
 }  // namespace vitrum

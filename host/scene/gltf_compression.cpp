@@ -18,8 +18,8 @@ constexpr const char* kDraco = "KHR_draco_mesh_compression";
 // A fallback buffer's uri: a name no file has (a control character), with the buffer's index.
 constexpr std::string_view kFallbackUri = "\x01meshopt-fallback-";
 
-// A decoded view is at most this many times its compressed bytes (and 64 KiB): meshoptimizer's
-// codecs reach about 64x on constant data, so a file cannot ask for memory far beyond its size.
+// A decoded view is at most this many times its compressed bytes (and 64 KiB), four times what the
+// codecs reach (docs/scene-format.md, "glTF 2.0"): a file cannot ask for memory far beyond its size.
 constexpr std::size_t kMaxExpansion = 256;
 constexpr std::size_t kExpansionSlack = std::size_t(1) << 16;
 
@@ -61,7 +61,8 @@ bool GltfCompression::markFallbackBuffers(nlohmann::json& doc) {
             !buffer["byteLength"].is_number_unsigned())
             continue;
         const nlohmann::json* extension = nullptr;
-        if (buffer.contains("extensions") && buffer["extensions"].is_object() && buffer["extensions"].contains(kMeshopt))
+        if (buffer.contains("extensions") && buffer["extensions"].is_object() &&
+            buffer["extensions"].contains(kMeshopt))
             extension = &buffer["extensions"][kMeshopt];
         if (!extension || !extension->is_object() || extension->value("fallback", false) != true) continue;
         fallbackLengths_[int(i)] = buffer["byteLength"].get<std::size_t>();
@@ -83,12 +84,13 @@ bool GltfCompression::giveDracoIndicesAView(nlohmann::json& doc) {
     for (nlohmann::json& mesh : doc["meshes"]) {
         if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
         for (nlohmann::json& primitive : mesh["primitives"]) {
-            if (!primitive.is_object() || !primitive.contains("indices") || !primitive["indices"].is_number_unsigned() ||
-                !primitive.contains("extensions") || !primitive["extensions"].is_object() ||
-                !primitive["extensions"].contains(kDraco))
+            if (!primitive.is_object() || !primitive.contains("indices") ||
+                !primitive["indices"].is_number_unsigned() || !primitive.contains("extensions") ||
+                !primitive["extensions"].is_object() || !primitive["extensions"].contains(kDraco))
                 continue;
             const std::size_t indices = primitive["indices"].get<std::size_t>();
-            if (indices >= accessors.size() || !accessors[indices].is_object() || accessors[indices].contains("bufferView"))
+            if (indices >= accessors.size() || !accessors[indices].is_object() ||
+                accessors[indices].contains("bufferView"))
                 continue;
             const nlohmann::json& draco = primitive["extensions"][kDraco];
             std::size_t buffer = 0;
@@ -140,7 +142,7 @@ std::vector<unsigned char> GltfCompression::prepare(std::vector<unsigned char> d
 }
 
 tinygltf::FsCallbacks GltfCompression::fileCallbacks() {
-    return tinygltf::FsCallbacks{&fileExists, &expandFilePath, &readWholeFile, &tinygltf::WriteWholeFile, this};
+    return tinygltf::FsCallbacks{&fileExists, &expandFilePath, &readWholeFile, &tinygltf::WriteWholeFile, nullptr};
 }
 
 void GltfCompression::decodeMeshopt(tinygltf::Model& model) const {
@@ -172,8 +174,14 @@ void GltfCompression::decodeMeshopt(tinygltf::Model& model) const {
             if (!e.Get(key).IsString()) fail(where + "'s " + key + " is not a string");
             return e.Get(key).Get<std::string>();
         };
-        View v{int(i), count("buffer", true), count("byteOffset", false), count("byteLength", true),
-               count("byteStride", true), count("count", true), text("mode", ""), text("filter", "NONE")};
+        View v{int(i),
+               count("buffer", true),
+               count("byteOffset", false),
+               count("byteLength", true),
+               count("byteStride", true),
+               count("count", true),
+               text("mode", ""),
+               text("filter", "NONE")};
         if (v.source >= model.buffers.size())
             fail(where + " names buffers[" + std::to_string(v.source) + "], which does not exist");
         const std::size_t sourceSize = model.buffers[v.source].data.size();
@@ -216,10 +224,11 @@ void GltfCompression::decodeMeshopt(tinygltf::Model& model) const {
         const std::string where = "bufferViews[" + std::to_string(v.index) + "]: " + kMeshopt;
         decoded.assign(v.count * v.stride, 0);
         const unsigned char* source = model.buffers[v.source].data.data() + v.sourceOffset;
-        const int status =
-            v.mode == "ATTRIBUTES" ? meshopt_decodeVertexBuffer(decoded.data(), v.count, v.stride, source, v.sourceLength)
-            : v.mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(decoded.data(), v.count, v.stride, source, v.sourceLength)
-                                    : meshopt_decodeIndexSequence(decoded.data(), v.count, v.stride, source, v.sourceLength);
+        const int status = v.mode == "ATTRIBUTES"
+                               ? meshopt_decodeVertexBuffer(decoded.data(), v.count, v.stride, source, v.sourceLength)
+                           : v.mode == "TRIANGLES"
+                               ? meshopt_decodeIndexBuffer(decoded.data(), v.count, v.stride, source, v.sourceLength)
+                               : meshopt_decodeIndexSequence(decoded.data(), v.count, v.stride, source, v.sourceLength);
         if (status != 0)
             fail(where + ": its bytes do not decode (meshoptimizer's status " + std::to_string(status) + ")");
         if (v.filter != "NONE" && v.mode != "ATTRIBUTES") fail(where + ": a filter applies to ATTRIBUTES only");
@@ -232,7 +241,8 @@ void GltfCompression::decodeMeshopt(tinygltf::Model& model) const {
         else if (v.filter != "NONE")
             fail(where + " has the filter \"" + v.filter + "\" with a byteStride of " + std::to_string(v.stride) +
                  ", which the extension does not define");
-        std::memcpy(model.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset, decoded.data(), decoded.size());
+        std::memcpy(model.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset, decoded.data(),
+                    decoded.size());
     }
 }
 

@@ -29,9 +29,8 @@ public:
     // unless its JSON uses EXT_meshopt_compression with fallback buffers or
     // KHR_draco_mesh_compression.
     std::vector<unsigned char> prepare(std::vector<unsigned char> document, bool binary);
-    // tinygltf's own file callbacks, with the fallback buffers' uris answered. Pass to
-    // TinyGLTF::SetFsCallbacks; valid while this object lives.
-    tinygltf::FsCallbacks fileCallbacks();
+    // tinygltf's own file callbacks, with the fallback buffers' uris answered (TinyGLTF::SetFsCallbacks).
+    static tinygltf::FsCallbacks fileCallbacks();
     // Decodes every compressed view of the loaded `model` into its buffer (fallback buffers get
     // their declared length first). Throws InputError naming the file and the view.
     void decodeMeshopt(tinygltf::Model& model) const;

@@ -9,7 +9,7 @@
 namespace vitrum {
 
 PrimitiveVertices decodeDracoPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
-                                    const tinygltf::Value& extension, const std::string& where) {
+                                       const tinygltf::Value& extension, const std::string& where) {
     const std::string at = where + ": KHR_draco_mesh_compression";
     auto fail = [&](const std::string& message) { throw std::invalid_argument(at + message); };
     auto index = [&](const tinygltf::Value& object, const char* key) -> int {

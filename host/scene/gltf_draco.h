@@ -25,6 +25,6 @@ struct PrimitiveVertices {
 // uncompressed, in its accessor. Throws std::invalid_argument with the reason (after `where`)
 // where the extension or its data is wrong.
 PrimitiveVertices decodeDracoPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
-                                    const tinygltf::Value& extension, const std::string& where);
+                                       const tinygltf::Value& extension, const std::string& where);
 
 }  // namespace vitrum
