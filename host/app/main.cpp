@@ -20,7 +20,7 @@ const char* kUsage = R"(vitrum: ray tracing of glass, water and plastic on Vulka
 usage: vitrum <command> [options]
 
 commands:
-  render SCENE -o OUT   render a scene (.json or .obj) to PNG, PFM, HDR or OpenEXR
+  render SCENE -o OUT   render a scene (.json, .obj, .gltf or .glb) to PNG, PFM, HDR or OpenEXR
   info SCENE            triangles, materials, lights and BVH statistics of a scene
   diff A B              compare two images (RMSE, PSNR, error shares), optionally write a heat map
   devices               list the Vulkan devices
