@@ -65,6 +65,10 @@ float fresnelReflectance(uint model, float n1, float n2, float cosI, float cos2t
     return fresnelSchlick(n1, n2, cosI, cosT);
 }
 
+// A thin pane's reflectance and transmittance from one face's R (render-model-decisions.md,
+// "Thin-walled glass"; pbrt-v4, ThinDielectricBxDF): (2R / (1 + R), (1 - R) / (1 + R)).
+vec2 thinPane(float r) { return vec2(2.0 * r / (1.0 + r), (1.0 - r) / (1.0 + r)); }
+
 // Beer-Lambert transmittance over a segment of length t in a medium of attenuation mu.
 vec3 beerLambert(vec3 mu, float t) { return exp(-mu * t); }
 

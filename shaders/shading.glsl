@@ -173,7 +173,9 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
         return;
     }
     st.light = 0u;
-    st.phase = usesMaterial(kMaterialMirror) && model == kMaterialMirror ? kPhaseScatter : kPhaseNextLight;
+    bool scatters = (usesMaterial(kMaterialMirror) && model == kMaterialMirror) ||
+                    (usesMaterial(kMaterialThinGlass) && model == kMaterialThinGlass);  // neither is lit
+    st.phase = scatters ? kPhaseScatter : kPhaseNextLight;
 }
 
 vec3 diffuseColour(GpuMaterial m) {
@@ -259,20 +261,23 @@ PendingRay childRay(vec3 origin, vec3 direction, vec3 weight, uvec4 media, uint 
 
 // Whether any material of this build spawns reflected or refracted rays.
 bool spawnsRays() {
-    return usesMaterial(kMaterialPhong) || usesMaterial(kMaterialMirror) || usesMaterial(kMaterialGlass);
+    return usesMaterial(kMaterialPhong) || usesMaterial(kMaterialMirror) || usesMaterial(kMaterialGlass) ||
+           usesMaterial(kMaterialThinGlass);
 }
 
 
 // The hit's children. The one traced next goes on at once as st.ray: the reflection (of a
-// mirror, a Phong surface with Schlick's weight, or glass), or through an index-matched glass
-// interface the same ray with the new medium stack; only a glass hit's refraction waits on the
-// pending-ray stack, so it has one store site (docs/gpu-design.md, "The ray tree"). The materials
-// share one reflection, from the normals on the incoming ray's side: lavapipe runs every
-// material's code every round (docs/gpu-design.md, "One shading round, fewer copies of its code").
+// mirror, a Phong surface with Schlick's weight, glass or thin glass), or through an
+// index-matched glass interface the same ray with the new medium stack; only a glass hit's
+// refraction (a thin glass's transmission) waits on the pending-ray stack, so it has one store
+// site (docs/gpu-design.md, "The ray tree"). The materials share one reflection, from the
+// normals on the incoming ray's side: lavapipe runs every material's code every round
+// (docs/gpu-design.md, "One shading round, fewer copies of its code").
 void scatter(GpuMaterial m) {
     uint model = materialModel(m);
     bool glass = usesMaterial(kMaterialGlass) && model == kMaterialGlass;
     bool mirror = usesMaterial(kMaterialMirror) && model == kMaterialMirror;
+    bool thin = usesMaterial(kMaterialThinGlass) && model == kMaterialThinGlass;  // n1 the ray's medium, n2 Ni
     vec3 d = st.ray.direction.xyz;
     vec3 w = st.ray.weight.xyz;
     uint depth = rayDepth(st.ray);
@@ -302,27 +307,34 @@ void scatter(GpuMaterial m) {
         if (kTouchingProbe && st.touching.w > 0u) through = st.ray.origin.xyz + st.farthestTouching * d;
     }
     // Index-matched glass: no optical interface; the same ray goes on with the new stack.
-    bool matched = glass && n1 == n2;
+    bool matched = (glass || thin) && n1 == n2;
     float eta = n1 / n2;
     float cosI = -ieeeDot(d, n);
     float cos2t = cosSquaredTransmitted(d, n, eta);
-    float r = fresnelReflectance(glass ? fresnelModel() : kFresnelSchlick, n1, n2, cosI, cos2t);
-    if (glass && !matched && cos2t < 0.0) counters.totalInternalReflections += 1u;
+    float r = fresnelReflectance(glass || thin ? fresnelModel() : kFresnelSchlick, n1, n2, cosI, cos2t);
+    if ((glass || thin) && !matched && cos2t < 0.0) counters.totalInternalReflections += 1u;
+    vec3 transmitted = w * (1.0 - r);
+    vec3 tint = thin ? diffuseColour(m) : vec3(1.0);
+    if (thin) {  // a pane: its faces' reflections summed, the transmission tinted and undeviated
+        vec2 pane = thinPane(r);
+        transmitted = w * pane.y * tint;
+        r = pane.x;
+    }
     vec3 transmittedOrigin = offsetRayOrigin(through, -facing);
     // Each child passes the depth and weight limits (or is counted).
-    if (usesMaterial(kMaterialGlass) && glass && !matched && cos2t >= 0.0 && admitChild(depth + 1u, w * (1.0 - r))) {
+    if ((glass || thin) && !matched && cos2t >= 0.0 && admitChild(depth + 1u, transmitted)) {
         if (st.pendingRays >= kPendingRayCapacity) {
             counters.rayStackOverflows += 1u;  // the refraction is dropped, never silently
         } else {
-            PendingRay refracted = childRay(transmittedOrigin, refractDirection(d, n, eta, cos2t), w * (1.0 - r), media,
-                                            count, depth + 1u);
+            vec3 direction = thin ? d : refractDirection(d, n, eta, cos2t);  // a pane's two refractions cancel
+            PendingRay refracted = childRay(transmittedOrigin, direction, transmitted, media, count, depth + 1u);
             refracted.weight.xyz *= skippedTransmittance(refracted, through);
             storePendingRay(pendingRayIndex(st.pendingRays), refracted);
             st.pendingRays += 1u;
             counters.refractionRays += 1u;
         }
     }
-    PendingRay next = matched ? childRay(transmittedOrigin, d, w, media, count, depth)
+    PendingRay next = matched ? childRay(transmittedOrigin, d, thin ? w * tint : w, media, count, depth)
                               : childRay(offsetRayOrigin(p, facing), reflectDirection(d, n), mirror ? w * m.specular.xyz : w * r,
                                          st.ray.media, mediaCount(st.ray), depth + 1u);
     // An index-matched continuation is the same ray going on at its own depth, not a new branch:

@@ -147,10 +147,12 @@ std::set<std::uint32_t> openGlassObjects(const Scene& scene) {
 std::set<std::uint32_t> opaqueObjectsMetFromBehind(const Scene& scene, const std::vector<glm::dvec3>& rayStarts) {
     auto isGlass = [&](const Triangle& t) { return scene.materials[t.material].model == MaterialModel::Glass; };
     std::map<std::uint32_t, std::vector<const Triangle*>> opaque;
+    // Rays pass through the walls of an object with glass triangles, thin glass included (whose
+    // triangles the rules take as opaque: a wall of no thickness has no inside).
     std::set<std::uint32_t> withGlass;
     for (const Triangle& t : scene.triangles) {
-        if (isGlass(t)) withGlass.insert(t.object);
-        else opaque[t.object].push_back(&t);
+        if (isGlass(t) || scene.materials[t.material].model == MaterialModel::ThinGlass) withGlass.insert(t.object);
+        if (!isGlass(t)) opaque[t.object].push_back(&t);
     }
     const std::set<std::uint32_t> open = openObjects(scene, [&](const Triangle& t) { return !isGlass(t); });
     std::set<std::uint32_t> metFromBehind;
@@ -199,6 +201,10 @@ SceneFeatures analyseScene(const Scene& scene, std::size_t flatAnalysisTriangles
                 if (m.abbe > 0.0f) f.dispersion = true;
                 break;
             case MaterialModel::Mirror: f.reflection = true; break;
+            case MaterialModel::ThinGlass:  // no medium; its tint is the diffuse colour or texture
+                f.reflection = true;
+                if (m.diffuseTexture >= 0) f.textures = true;
+                break;
             case MaterialModel::Phong: f.reflection = true; [[fallthrough]];
             case MaterialModel::Lambert:
                 if (!scene.lights.empty()) f.shadowRays = true;
@@ -276,9 +282,10 @@ SceneFeatures analyseScene(const Scene& scene, std::size_t flatAnalysisTriangles
 
     const std::uint32_t maxDepth = scene.settings.maxDepth;
     // Dispersion: a split ray's samples wait as one pending entry below its subtree (trace.comp).
-    f.rayStackDepth = f.glass ? std::min<std::uint32_t>(gpu::kRayStackSize, (maxDepth > 0 ? maxDepth - 1 : 0) +
-                                                                              (f.dispersion ? 1 : 0))
-                              : 0;
+    const bool refracts = f.glass || f.uses(MaterialModel::ThinGlass);
+    f.rayStackDepth = refracts ? std::min<std::uint32_t>(gpu::kRayStackSize,
+                                                         (maxDepth > 0 ? maxDepth - 1 : 0) + (f.dispersion ? 1 : 0))
+                               : 0;
     f.textures = f.textures && !scene.textures.empty();
     f.background = scene.background.kind;
     f.usefulDepth = f.reflection ? maxDepth : std::min<std::uint32_t>(1, maxDepth);

@@ -73,7 +73,7 @@ struct SceneFeatures {
     std::vector<std::uint32_t> cameraMedia;
     std::vector<std::uint32_t> cameraMediaBehind;
     // Pending rays of a depth-first ray tree: only refractions wait (the reflection of a hit is
-    // traced at once), so 0 without glass, else max_depth - 1 (docs/gpu-design.md shows why that
+    // traced at once), so 0 without glass or thin glass, else max_depth - 1 (docs/gpu-design.md shows why that
     // suffices), capped at gpu::kRayStackSize.
     std::uint32_t rayStackDepth = 0;
     // The max_depth beyond which nothing changes: 1 (primary rays only, a tree of depth 0) without
@@ -100,7 +100,8 @@ std::set<std::uint32_t> openGlassObjects(const Scene& scene);
 // The objects with opaque triangles that a ray may meet from behind (render-model-decisions.md,
 // "Coincident opaque surfaces"): those whose opaque triangles are not a closed, consistently wound
 // mesh with outward normals (an open sheet, a mesh wound inward), those that also have glass
-// triangles (rays come in through them), and those around one of `rayStarts` (where primary rays
+// triangles or are of thin glass (rays come in through them; thin glass counts as opaque in the
+// rules), and those around one of `rayStarts` (where primary rays
 // start). A ray meets the opaque triangles of any other object from the front only.
 std::set<std::uint32_t> opaqueObjectsMetFromBehind(const Scene& scene, const std::vector<glm::dvec3>& rayStarts);
 

@@ -22,8 +22,9 @@
 namespace vitrum {
 namespace {
 
-// "glass (4)": the model and its MTL `shader` number.
+// "glass (4)": the model and its MTL `shader` number (thin glass: shader 4 and `thin_walled 1`).
 std::string modelName(MaterialModel model) {
+    if (model == MaterialModel::ThinGlass) return std::string(materialModelName(model)) + " (4 thin_walled)";
     return std::string(materialModelName(model)) + " (" + std::to_string(std::uint32_t(model)) + ")";
 }
 
@@ -57,7 +58,10 @@ int infoCommand(int argc, char** argv, int first) {
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];
         std::printf("  %-28s %-22s %7zu triangles", m.name.c_str(), modelName(m.model).c_str(), trianglesPerMaterial[i]);
-        if (m.model == MaterialModel::Glass || m.model == MaterialModel::Phong) std::printf("  Ni %.3g", m.ior);
+        if (m.model == MaterialModel::Glass || m.model == MaterialModel::Phong || m.model == MaterialModel::ThinGlass)
+            std::printf("  Ni %.3g", m.ior);
+        if (m.model == MaterialModel::ThinGlass)  // the tint of what it transmits
+            std::printf("  Kd %.3g %.3g %.3g", m.diffuse.x, m.diffuse.y, m.diffuse.z);
         if (m.model == MaterialModel::Glass)
             std::printf("  Tf %.3g %.3g %.3g", m.attenuation.x, m.attenuation.y, m.attenuation.z);
         if (m.model == MaterialModel::Glass && m.priority != 0) std::printf("  priority %d", m.priority);

@@ -121,6 +121,20 @@ Real fresnel(FresnelModel model, Real n1, Real n2, Real cosI) {
     return fresnelSchlick(n1, n2, cosI);
 }
 
+// A thin pane (render-model-decisions.md, "Thin-walled glass"): the light reflected back and forth
+// between its two parallel faces, each reflecting R, summed (pbrt-v4, ThinDielectricBxDF):
+// R' = R + (1 - R)^2 R / (1 - R^2) = 2R / (1 + R), T' = (1 - R) / (1 + R).
+template <class Real>
+struct PaneTerms {
+    Real reflectance;
+    Real transmittance;
+};
+
+template <class Real>
+PaneTerms<Real> thinPane(Real r) {
+    return {Real(2) * r / (Real(1) + r), (Real(1) - r) / (Real(1) + r)};
+}
+
 // Beer-Lambert transmittance exp(-mu t) over a segment of length t in a medium of attenuation mu
 // per channel (lecture, "Attenuation of Refracted Ray"); mu = 0 (air) gives exactly 1.
 template <class Real>

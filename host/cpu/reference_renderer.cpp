@@ -188,6 +188,7 @@ private:
         Color colour;
         switch (hit.material->model) {
             case MaterialModel::Glass: colour = shadeGlass(hit, origin, d, depth, media, w, sample, counters); break;
+            case MaterialModel::ThinGlass: colour = shadeThinGlass(hit, d, depth, media, w, sample, counters); break;
             default: colour = shadeOpaque(hit, d, depth, media, w, sample, counters); break;
         }
         return colour * transmittance;
@@ -420,6 +421,35 @@ private:
         colour += r * traceChild(hit.position, offsetRayOrigin(hit.position, facing, offsetScale_), optics::reflect(d, n), depth,
                                  media, weight * r, true, sample, counters);
         return colour;
+    }
+
+    // A wall of no thickness (render-model-decisions.md, "Thin-walled glass"): no medium, so the
+    // stack stays; R' C_refl + T' Kd C_trans with the pane's R' and T' from the face's Fresnel R
+    // between the ray's medium and Ni, the transmitted ray undeviated.
+    Color shadeThinGlass(Hit hit, const Vec3& d, std::uint32_t depth, const MediumStack& media, const Color& weight,
+                         int sample, TraceCounters& counters) const {
+        // Both normals face the incoming ray, as on an opaque surface: a sheet has no inside.
+        if (glm::dot(hit.geometricNormal, d) > Real(0)) hit.geometricNormal = -hit.geometricNormal;
+        if (glm::dot(hit.shadingNormal, d) > Real(0)) hit.shadingNormal = -hit.shadingNormal;
+        const Color tint = diffuseColour(*hit.material, hit.uv);
+        const Vec3 through = offsetRayOrigin(hit.position, -hit.geometricNormal, offsetScale_);
+        const Real n1 = mediumIor(media, sample);
+        const Real n2 = Real(hit.material->ior);
+        if (n1 == n2)  // index-matched: only the tint; the same ray goes on at its depth
+            return tint * trace(hit.position, through, d, depth, media, weight * tint, sample, counters);
+        const Real cosI = -glm::dot(d, hit.shadingNormal);
+        const Real r = optics::fresnel(scene_.settings.fresnel, n1, n2, cosI);
+        const optics::PaneTerms<Real> pane = optics::thinPane(r);
+        Color colour(0);
+        if (optics::refract(d, hit.shadingNormal, n1 / n2)) {
+            const Color wt = weight * pane.transmittance * tint;
+            colour += pane.transmittance * tint *
+                      traceChild(hit.position, through, d, depth, media, wt, false, sample, counters);
+        } else {
+            counters.totalInternalReflections += 1;  // R = 1: the pane reflects everything
+        }
+        return colour +
+               pane.reflectance * traceReflection(hit, d, depth, media, weight * pane.reflectance, sample, counters);
     }
 
     struct Crossing {

@@ -28,6 +28,14 @@ void packVertices(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleVer
     });
 }
 
+// The kernel reads a material's model as the MaterialModel it is (gpu_types.h, "Materials").
+static_assert(std::uint32_t(MaterialModel::Normal) == gpu::kMaterialNormal &&
+              std::uint32_t(MaterialModel::Lambert) == gpu::kMaterialLambert &&
+              std::uint32_t(MaterialModel::Phong) == gpu::kMaterialPhong &&
+              std::uint32_t(MaterialModel::Glass) == gpu::kMaterialGlass &&
+              std::uint32_t(MaterialModel::Mirror) == gpu::kMaterialMirror &&
+              std::uint32_t(MaterialModel::ThinGlass) == gpu::kMaterialThinGlass);
+
 PackedTables packTables(const Scene& scene) {
     PackedTables packed;
     for (const Material& m : scene.materials) {

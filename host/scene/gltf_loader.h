@@ -40,8 +40,8 @@ struct GltfResult {
 glm::mat4 gltfToZUp();
 
 // Throws InputError naming the file: unreadable or malformed, an extension it requires that
-// vitrum does not read, accessors out of their buffers, non-finite positions, a thin-walled
-// transmissive material, an orthographic or missing named camera, no triangles. Warns once per
+// vitrum does not read, accessors out of their buffers, non-finite positions, an unreadable
+// texture, an orthographic or missing named camera, no triangles. Warns once per
 // skipped primitive, light or ignored material property.
 GltfResult loadGltf(Scene& scene, const std::filesystem::path& file, const SceneLoadOptions& loadOptions,
                     const GltfOptions& options = {});

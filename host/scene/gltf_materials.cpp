@@ -138,16 +138,22 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
         m.ior = float(ior);
     else
         warnAbout(quoted + " has ior " + std::to_string(ior) + "; using 1.5");
-    if (transmissionFactor >= 0.5) {
-        // Thin-walled (no volume, or thicknessFactor 0: KHR_materials_volume) is a surface
-        // with no inside; vitrum's glass is a closed mesh around a medium.
-        const double thickness =
-            volume ? extensionNumber(*volume, "KHR_materials_volume", "thicknessFactor", 0.0, quoted) : 0.0;
-        if (!(thickness > 0.0))
-            fail(quoted +
-                 " is thin-walled glass (KHR_materials_transmission without KHR_materials_volume, or "
-                 "thicknessFactor 0), which vitrum does not render: its glass is a closed mesh "
-                 "around a medium. Give the material KHR_materials_volume with a thicknessFactor > 0");
+    const double thickness = transmissionFactor >= 0.5 && volume
+                                 ? extensionNumber(*volume, "KHR_materials_volume", "thicknessFactor", 0.0, quoted)
+                                 : 0.0;
+    if (transmissionFactor >= 0.5 && !(thickness > 0.0)) {
+        // Thin-walled (no volume, or thicknessFactor 0: KHR_materials_volume): a wall of no
+        // thickness whose transmitted light the base colour tints (KHR_materials_transmission).
+        m.model = MaterialModel::ThinGlass;
+        m.diffuse = base;
+        if (pbr.baseColorTexture.index >= 0)
+            m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, index, quoted, ignored);
+        if (transmissionFactor < 1.0)
+            ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 1)");
+        if (extension("KHR_materials_dispersion"))
+            ignored.push_back("KHR_materials_dispersion (a thin wall's two faces undo each other's dispersion)");
+        if (extension("KHR_materials_pbrSpecularGlossiness")) ignored.push_back("KHR_materials_pbrSpecularGlossiness");
+    } else if (transmissionFactor >= 0.5) {
         m.model = MaterialModel::Glass;
         // KHR_materials_dispersion: dispersion = 20 / V_d, 0 for none.
         if (const tinygltf::Value* dispersion = extension("KHR_materials_dispersion")) {

@@ -34,7 +34,7 @@ public:
 
     // The scene's material for the file's materials[index], added at its first use; for -1 (a
     // primitive that names none), the render model's default material. Throws InputError naming
-    // the material where it cannot be rendered (thin-walled glass, an unreadable texture).
+    // the material where it cannot be rendered (an unreadable texture).
     std::uint32_t sceneMaterial(int index);
     // The KHR_texture_transform of materials[index]'s baseColorTexture (glTF's texture
     // coordinates, v down), once sceneMaterial(index) has made it; null where it has none.

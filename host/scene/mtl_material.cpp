@@ -11,6 +11,28 @@ namespace {
 
 glm::vec3 decodeSrgb(glm::vec3 c) { return {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z)}; }
 
+// `thin_walled 1` makes a glass a wall of no thickness (docs/render-model-decisions.md,
+// "Thin-walled glass"): its transmitted light is tinted by Kd (map_Kd), clear without a Kd line;
+// what only a medium has (Tf over a length, a priority among media, dispersion, which a pane's
+// two parallel faces undo) does not apply and is named.
+void thinWalled(const MtlEntry& entry, const std::filesystem::path& mtlFile, Material& m) {
+    const std::string material = mtlFile.string() + ": material \"" + entry.name + "\"";
+    if (m.model != MaterialModel::Glass) {
+        warn(material + " has thin_walled 1 but is not glass; thin_walled ignored");
+        return;
+    }
+    m.model = MaterialModel::ThinGlass;
+    if (!entry.kd) m.diffuse = glm::vec3(1.0f);
+    std::string ignored;
+    if (m.attenuation != glm::vec3(0.0f)) ignored += " Tf";
+    if (m.priority != 0) ignored += " priority";
+    if (m.abbe > 0.0f) ignored += " Vd";
+    m.attenuation = glm::vec3(0.0f);
+    m.priority = 0;
+    m.abbe = 0.0f;
+    if (!ignored.empty()) warn(material + " is thin-walled glass, which has no medium; ignored:" + ignored);
+}
+
 }  // namespace
 
 MaterialModel materialModelFor(std::optional<int> shader, std::optional<int> illum, bool* substituted) {
@@ -50,7 +72,7 @@ Material materialFromMtl(const MtlEntry& entry, const std::filesystem::path& mtl
     bool substituted = false;
     m.model = materialModelFor(entry.shader, entry.illum, &substituted);
     if (substituted) {
-        static constexpr const char* kNames[] = {"", "normal", "Lambert", "Phong", "glass", "", "mirror"};
+        static constexpr const char* kNames[] = {"", "normal", "Lambert", "Phong", "glass", "", "mirror", "thin glass"};
         std::string shader = entry.shader ? "unsupported shader " + std::to_string(*entry.shader) : "no shader line";
         std::string illum = entry.illum ? "illum " + std::to_string(*entry.illum) : "no illum line";
         int line = entry.shader ? entry.shaderLine : entry.line;
@@ -78,6 +100,7 @@ Material materialFromMtl(const MtlEntry& entry, const std::filesystem::path& mtl
             warn(mtlFile.string() + ": material \"" + entry.name + "\" has Vd " + std::to_string(*entry.vd) +
                  "; no dispersion");
     }
+    if (entry.thinWalled == 1) thinWalled(entry, mtlFile, m);
     if (entry.ni) {
         // Some exporters write Ni 0 for opaque materials; an IOR must be positive for the optics.
         if (*entry.ni > 0.0f)

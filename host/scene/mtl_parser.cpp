@@ -108,8 +108,8 @@ private:
             entries_.push_back(MtlEntry{.name = std::string(words[1]), .line = line_});
             return;
         }
-        static constexpr std::string_view kUsedKeys[] = {"Ka", "Kd",    "Ks",     "Tf",     "Ns",
-                                                         "Ni", "illum", "shader", "map_Kd", "priority", "Vd"};
+        static constexpr std::string_view kUsedKeys[] = {"Ka",    "Kd",     "Ks",     "Tf",       "Ns", "Ni",
+                                                         "illum", "shader", "map_Kd", "priority", "Vd", "thin_walled"};
         if (std::find(std::begin(kUsedKeys), std::end(kUsedKeys), key) == std::end(kUsedKeys)) return;
         if (entries_.empty()) {
             warn(path_.string() + ":" + std::to_string(line_) + ": " + std::string(key) + " before any newmtl ignored");
@@ -134,7 +134,10 @@ private:
             m.vd = scalar(key, words, rest);
         else if (key == "priority")
             m.priority = integer(key, words, rest);
-        else if (key == "shader") {
+        else if (key == "thin_walled") {
+            m.thinWalled = integer(key, words, rest);
+            if (*m.thinWalled != 0 && *m.thinWalled != 1) fail("thin_walled expects 0 or 1, got " + quoteInput(rest));
+        } else if (key == "shader") {
             m.shader = integer(key, words, rest);
             m.shaderLine = line_;
         } else {  // map_Kd [options] file: options start with '-'; otherwise the whole rest may hold spaces

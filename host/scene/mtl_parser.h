@@ -16,7 +16,7 @@ struct MtlEntry {
     int line = 0;                             // of the `newmtl` line
     std::optional<glm::vec3> ka, kd, ks, tf;  // as written: sRGB for Ka Kd Ks, linear mu for Tf
     std::optional<float> ns, ni, vd;
-    std::optional<int> illum, shader, priority;
+    std::optional<int> illum, shader, priority, thinWalled;
     int shaderLine = 0;
     std::optional<std::string> mapKd;  // as written, relative to the MTL file
     int mapKdLine = 0;

@@ -18,6 +18,11 @@ enum class MaterialModel : std::uint32_t {
     Phong = 3,    // opaque dielectric: Phong + Schlick-weighted reflection
     Glass = 4,
     Mirror = 6,
+    // A glass wall of no thickness (glTF's thin-walled transmission, MTL `thin_walled 1`): a sheet
+    // with no inside that reflects and transmits as a thin pane does, the transmitted light tinted
+    // by the diffuse colour (docs/render-model-decisions.md, "Thin-walled glass"). Not a course
+    // shader number.
+    ThinGlass = 7,
 };
 
 enum class FresnelModel : std::uint32_t { Schlick = 0, Exact = 1, SchlickExp2 = 2 };

@@ -13,6 +13,7 @@ inline const char* materialModelName(MaterialModel model) {
         case MaterialModel::Phong: return "opaque dielectric";
         case MaterialModel::Glass: return "glass";
         case MaterialModel::Mirror: return "mirror";
+        case MaterialModel::ThinGlass: return "thin glass";
     }
     return "?";
 }
@@ -44,6 +45,6 @@ inline const char* textureFilterName(TextureFilter filter) {
 }
 
 constexpr MaterialModel kMaterialModels[] = {MaterialModel::Normal, MaterialModel::Lambert, MaterialModel::Phong,
-                                             MaterialModel::Glass, MaterialModel::Mirror};
+                                             MaterialModel::Glass,  MaterialModel::Mirror,  MaterialModel::ThinGlass};
 
 }  // namespace vitrum

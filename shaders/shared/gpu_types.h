@@ -111,6 +111,7 @@ VITRUM_CONST uint kMaterialLambert = 2u;
 VITRUM_CONST uint kMaterialPhong = 3u;  // opaque dielectric: Phong + Schlick-weighted reflection
 VITRUM_CONST uint kMaterialGlass = 4u;
 VITRUM_CONST uint kMaterialMirror = 6u;
+VITRUM_CONST uint kMaterialThinGlass = 7u;  // no course number: MaterialModel::ThinGlass
 
 VITRUM_CONST uint kNoTexture = 0xFFFFFFFFu;
 

@@ -781,23 +781,50 @@ TEST_F(GltfLoader, SpecularGlossinessMaterialsMapOntoPhongAndLambert) {
     EXPECT_EQ(scene.materials[2].model, MaterialModel::Glass);
 }
 
-// Thin-walled transmission has no inside (KHR_materials_volume: no extension, or thicknessFactor
-// 0): it is refused, never rendered as a solid.
-TEST_F(GltfLoader, ThinWalledGlassIsRefused) {
-    for (json extensions : {json{{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}},
-                            json{{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
-                                 {"KHR_materials_volume", {{"thicknessFactor", 0.0}}}}}) {
-        GltfBuilder b;
-        const int glass = b.material({{"name", "pane"}, {"extensions", extensions}});
-        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}, {"material", glass}})}});
-        const fs::path file = b.write(dir_ / "thin.gltf");
-        try {
-            load(file);
-            ADD_FAILURE() << "thin-walled glass was loaded";
-        } catch (const InputError& e) {
-            EXPECT_NE(std::string(e.what()).find("(\"pane\") is thin-walled glass"), std::string::npos) << e.what();
-        }
+// Thin-walled transmission (KHR_materials_volume: no extension, or thicknessFactor 0) is thin
+// glass, never a solid: its Ni from KHR_materials_ior, what it transmits tinted by the base colour
+// (KHR_materials_transmission), factor and texture; a volume's attenuation and a dispersion do
+// not apply to a wall of no thickness, the dispersion named in a warning.
+TEST_F(GltfLoader, ThinWalledGlassIsThinGlassTintedByItsBaseColour) {
+    Image image(1, 1);
+    image.pixels = {glm::vec3(srgbToLinear(128.0f / 255.0f))};  // a PNG holds it exactly
+    GltfBuilder b;
+    b.embedTexture(image, dir_ / "texture.png");
+    const int uvs = b.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, 5126, "VEC2", 3);
+    const int positions = b.positions(kTriangle);
+    const json transmission = {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}};
+    json zeroThickness = transmission;
+    zeroThickness["KHR_materials_volume"] = {{"thicknessFactor", 0.0}, {"attenuationDistance", 1.0}};
+    json tinted = transmission;
+    tinted["KHR_materials_ior"] = {{"ior", 1.52}};
+    tinted["KHR_materials_dispersion"] = {{"dispersion", 0.5}};
+    const json pbr = {{"baseColorFactor", {0.2, 0.8, 0.4, 1.0}}, {"metallicFactor", 0.0}};
+    json textured = pbr;
+    textured["baseColorTexture"] = {{"index", 0}};
+    for (const json& material :
+         {json{{"name", "pane"}, {"extensions", transmission}}, json{{"name", "flat"}, {"extensions", zeroThickness}},
+          json{{"name", "green"}, {"extensions", tinted}, {"pbrMetallicRoughness", pbr}},
+          json{{"name", "stained"}, {"extensions", transmission}, {"pbrMetallicRoughness", textured}}})
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", positions}, {"TEXCOORD_0", uvs}}},
+                                 {"material", b.material(material)}})}});
+    const int before = warningCount();
+    const Scene scene = load(b.write(dir_ / "thin.gltf"));
+    EXPECT_EQ(warningCount(), before + 1);  // the dispersion a pane's two faces undo
+    ASSERT_EQ(scene.materials.size(), 4u);
+    for (const Material& m : scene.materials) {
+        SCOPED_TRACE(m.name);
+        EXPECT_EQ(m.model, MaterialModel::ThinGlass);
+        EXPECT_EQ(m.attenuation, glm::vec3(0.0f));
+        EXPECT_EQ(m.abbe, 0.0f);
     }
+    EXPECT_EQ(scene.materials[0].diffuse, glm::vec3(1.0f));  // no base colour: clear
+    EXPECT_EQ(scene.materials[0].ior, 1.5f);
+    EXPECT_EQ(scene.materials[2].diffuse, glm::vec3(0.2f, 0.8f, 0.4f));
+    EXPECT_EQ(scene.materials[2].ior, 1.52f);
+    ASSERT_GE(scene.materials[3].diffuseTexture, 0);
+    // The texture times the factor, as a base colour's (BaseColourFactorMultipliesItsEmbeddedTexture).
+    const Texture& texture = scene.textures[std::size_t(scene.materials[3].diffuseTexture)];
+    EXPECT_FLOAT_EQ(texture.texels[0].y, 0.8f * srgbToLinear(128.0f / 255.0f));
 }
 
 // tinygltf passes material extensions' values on unchecked: one of the wrong type is refused,

@@ -234,6 +234,33 @@ TEST(SceneFeatures, PendingRayStackFollowsMaxDepthUpToTheGpuStackWithGlassOnly) 
     }
 }
 
+// Thin glass (render-model-decisions.md, "Thin-walled glass") transmits as glass refracts: its
+// transmitted ray waits while the reflection is traced, so it needs the pending rays glass needs,
+// but no medium stack, no touching probe and no glass-on-opaque check; its texture is read.
+TEST(SceneFeatures, ThinGlassNeedsPendingRaysButNoMedium) {
+    Scene scene = glassScene();
+    addGlassBox(scene, {0, 0, 0}, {1, 1, 1});
+    addGlassBox(scene, {1, 0, 0}, {2, 1, 1});  // touching the first
+    for (Material& m : scene.materials) m.model = MaterialModel::ThinGlass;
+    scene.settings.maxDepth = 10;
+    SceneFeatures f = analyseScene(scene);
+    EXPECT_TRUE(f.uses(MaterialModel::ThinGlass));
+    EXPECT_FALSE(f.glass);
+    EXPECT_TRUE(f.reflection);
+    EXPECT_EQ(f.rayStackDepth, 9u);
+    EXPECT_EQ(f.mediumStackDepth, 0u);
+    EXPECT_FALSE(f.touchingMediaPossible);
+    EXPECT_FALSE(f.opaqueContactPossible);
+    EXPECT_FALSE(f.textures);
+    scene.materials[0].diffuseTexture = 0;
+    scene.textures.push_back(Texture{"tint", 1, 1, {glm::vec3(0.5f)}});
+    EXPECT_TRUE(analyseScene(scene).textures);
+    // Rays pass through its walls, so a closed, outward-wound thin-glass box is met from behind.
+    EXPECT_EQ(opaqueObjectsMetFromBehind(scene, {glm::dvec3(5, 5, 5)}), (std::set<std::uint32_t>{0u, 1u}));
+    // Two such boxes sharing a face: a ray in one meets the shared face from behind.
+    EXPECT_TRUE(f.coincidentOpaquePossible);
+}
+
 TEST(TraceSpecialization, LambertSceneGetsAKernelWithoutGlassOrStacks) {
     Scene scene = loadProjectScene("scenes/course/geospheres_5x5.json");
     TraceSpecialization s = TraceSpecialization::forScene(scene, analyseScene(scene));

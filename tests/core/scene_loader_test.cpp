@@ -484,6 +484,45 @@ TEST(SceneMtl, PriorityIsAnInteger) {
     EXPECT_EQ(materialNamed(scene, "under").priority, -2);
 }
 
+// `thin_walled 1` makes a glass thin glass (render-model-decisions.md, "Thin-walled glass"): its
+// Kd, sRGB as every Kd, tints what it transmits, white without a Kd line; Tf, priority and Vd,
+// which only a medium has, are dropped with one warning. On another model it is ignored with a
+// warning; anything but 0 or 1 is an error naming the line.
+TEST(SceneMtl, ThinWalledMakesAGlassThinGlass) {
+    fs::path dir = tempDir();
+    write(dir / "t.mtl",
+          "newmtl pane\nshader 4\nNi 1.52\nthin_walled 1\n"
+          "newmtl green\nshader 4\nKd 0.5 1 0.5\nthin_walled 1\n"
+          "newmtl medium\nshader 4\nTf 1 0 0\npriority 2\nVd 30\nthin_walled 1\n"
+          "newmtl solid\nshader 4\nthin_walled 0\n"
+          "newmtl plastic\nshader 3\nthin_walled 1\n");
+    write(dir / "t.obj",
+          "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl pane\nf 1 2 3\nusemtl green\nf 1 2 3\n"
+          "usemtl medium\nf 1 2 3\nusemtl solid\nf 1 2 3\nusemtl plastic\nf 1 2 3\n");
+    const int before = warningCount();
+    const Scene scene = loadScene(dir / "t.obj");
+    EXPECT_EQ(warningCount(), before + 2);  // medium's Tf, priority and Vd; plastic's thin_walled
+    const Material& pane = materialNamed(scene, "pane");
+    EXPECT_EQ(pane.model, MaterialModel::ThinGlass);
+    EXPECT_EQ(pane.ior, 1.52f);
+    EXPECT_EQ(pane.diffuse, glm::vec3(1.0f));
+    EXPECT_EQ(materialNamed(scene, "green").diffuse, glm::vec3(srgbToLinear(0.5f), 1.0f, srgbToLinear(0.5f)));
+    const Material& medium = materialNamed(scene, "medium");
+    EXPECT_EQ(medium.model, MaterialModel::ThinGlass);
+    EXPECT_EQ(medium.attenuation, glm::vec3(0.0f));
+    EXPECT_EQ(medium.priority, 0);
+    EXPECT_EQ(medium.abbe, 0.0f);
+    EXPECT_EQ(materialNamed(scene, "solid").model, MaterialModel::Glass);
+    EXPECT_EQ(materialNamed(scene, "plastic").model, MaterialModel::Phong);
+    write(dir / "bad.mtl", "newmtl pane\nshader 4\nthin_walled 2\n");
+    try {
+        parseMtlFile(dir / "bad.mtl");
+        ADD_FAILURE() << "thin_walled 2 was read";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("bad.mtl:3: thin_walled expects 0 or 1"), std::string::npos) << e.what();
+    }
+}
+
 TEST(SceneMtl, KsTypoReadsAsOneWithOneWarningPerFile) {
     for (const char* file : {"box_sphere/box_sphere.mtl", "allied_avenger_6887/6887_allied_avenger.mtl"}) {
         std::vector<MtlEntry> entries = parseMtlFile(course(file));

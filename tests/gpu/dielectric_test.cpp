@@ -42,7 +42,7 @@ std::string caseName(const ::testing::TestParamInfo<DielectricCase>& info) {
 const char* kDielectricScenes[] = {"scenes/demo.json",           "scenes/touching_cubes.json",
                                    "scenes/one_box.json",        "scenes/water_glass.json",
                                    "scenes/prism.json",          "scenes/plastics_green_glass.json",
-                                   "scenes/bubble.json",
+                                   "scenes/bubble.json",         "scenes/thin_glass.json",
                                    "scenes/course/geospheres_5x5_glass.json"};
 
 std::vector<DielectricCase> allCases() {

@@ -168,10 +168,12 @@ void expectCloseRenders(const RenderPair& fromObj, const RenderPair& fromGltf) {
 }
 
 // The glass objects of scenes whose other objects are a Lambert floor (kept as OBJ, since glTF
-// has no Lambert): diamond's high IOR under an environment map, two clear cubes that touch, and
-// bubble's air bubble in a tinted block.
+// has no Lambert): diamond's high IOR under an environment map, two clear cubes that touch,
+// bubble's air bubble in a tinted block, and thin_glass's panes and hollow sphere (transmission
+// without a volume, tinted by the base colour) beside a solid sphere.
 TEST_F(GltfScenes, GlassScenesRenderBitIdenticalFromGltf) {
-    for (const char* path : {"scenes/diamond.json", "scenes/touching_cubes.json", "scenes/bubble.json"}) {
+    for (const char* path :
+         {"scenes/diamond.json", "scenes/touching_cubes.json", "scenes/bubble.json", "scenes/thin_glass.json"}) {
         SCOPED_TRACE(path);
         const fs::path folder = dir_ / fs::path(path).stem();
         fs::create_directories(folder);

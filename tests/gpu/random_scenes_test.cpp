@@ -151,6 +151,9 @@ public:
             for (Triangle& t : scene.triangles)
                 if (t.object == object && n++ % 3 == 0) t.material = other;
         }
+        // Thin-walled glass of a material of its own: a pane across the scene (sometimes through
+        // the other objects) or a hollow sphere, tinted, sometimes textured.
+        if (chance(0.25)) addThinGlass(scene);
         return transformed(scene, scale, shift);
     }
 
@@ -175,6 +178,32 @@ private:
         if (model == MaterialModel::Glass && chance(0.5))
             m.attenuation = vec3(uniform(0, 2), uniform(0, 2), uniform(0, 2));
         return m;
+    }
+
+    void addThinGlass(Scene& scene) {
+        Material m = makeMaterial(MaterialModel::ThinGlass, vec3(0.0f), vec3(uniform(0.3f, 1), uniform(0.3f, 1), 1.0f),
+                                  vec3(0.0f), 1.0f, pick({1.0f, 1.33f, 1.5f, 2.4f, uniform(1.0f, 2.5f)}));
+        if (!scene.textures.empty() && chance(0.3)) m.diffuseTexture = 0;
+        const auto material = std::uint32_t(scene.materials.size());
+        scene.materials.push_back(m);
+        const auto object = std::uint32_t(scene.objectNames.size());
+        scene.objectNames.push_back("object " + std::to_string(object));
+        const vec3 at(uniform(-1, 1), uniform(-1, 1), uniform(-0.5f, 1));
+        if (chance(0.5)) {
+            addSphere(scene, at, uniform(0.3f, 1.5f), material, object);
+            drawn_ += "; a hollow sphere of thin glass of index " + std::to_string(m.ior);
+            return;
+        }
+        const vec3 n = glm::normalize(vec3(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)));
+        const vec3 u = glm::normalize(glm::cross(n, std::abs(n.z) < 0.9f ? vec3(0, 0, 1) : vec3(1, 0, 0)));
+        const vec3 v = glm::cross(n, u);
+        const float size = uniform(1.0f, 4.0f);
+        const vec3 a = at - size * u - size * v, b = at + size * u - size * v, c = at + size * u + size * v,
+                   d = at - size * u + size * v;
+        scene.triangles.push_back(makeTriangle(a, b, c, material, object));
+        scene.triangles.push_back(makeTriangle(a, c, d, material, object));
+        drawn_ +=
+            "; a pane of thin glass of index " + std::to_string(m.ior) + (m.diffuseTexture >= 0 ? ", textured" : "");
     }
 
     // Adds one object of a random material of the scene's.
@@ -256,6 +285,7 @@ private:
         case MaterialModel::Phong: return "opaque dielectric";
         case MaterialModel::Glass: return "glass";
         case MaterialModel::Mirror: return "mirror";
+        case MaterialModel::ThinGlass: return "thin glass";
         }
         return "?";
     }

@@ -159,6 +159,11 @@ inline nlohmann::json material(const MtlEntry& entry, const fs::path& mtlFile, c
     // roughness^2 (glTF 2.0, Appendix B).
     const double roughness = std::pow(2.0 / (double(m.shininess) + 2.0), 0.25);
     pbr = {{"baseColorFactor", rgba(m.diffuse)}, {"metallicFactor", 0.0}, {"roughnessFactor", roughness}};
+    if (m.model == MaterialModel::ThinGlass) {
+        // Transmission without a volume: thin-walled, tinted by the base colour (Kd, map_Kd below).
+        out["extensions"]["KHR_materials_transmission"] = {{"transmissionFactor", 1.0}};
+        extensions.insert("KHR_materials_transmission");
+    }
     if (m.model == MaterialModel::Phong) {
         // Ks as the specular layer's colour over F0 of the material's IOR (the loader's
         // min(F0 * specularColorFactor, 1) * specularFactor, KHR_materials_specular).
