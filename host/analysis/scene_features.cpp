@@ -144,6 +144,20 @@ std::set<std::uint32_t> openGlassObjects(const Scene& scene) {
                        [&](const Triangle& t) { return scene.materials[t.material].model == MaterialModel::Glass; });
 }
 
+std::string openGlassWarning(const Scene& scene, const SceneFeatures& features) {
+    if (features.openGlassObjects == 0) return "";
+    const std::set<std::uint32_t> open = openGlassObjects(scene);
+    std::string names;
+    std::size_t named = 0;
+    for (auto it = open.begin(); it != open.end() && named < 3; ++it, ++named)
+        names += std::string(named == 0 ? "" : ", ") + "\"" + scene.objectNames[*it] + "\"";
+    if (open.size() > named) names += " and " + std::to_string(open.size() - named) + " more";
+    return "glass object" + std::string(open.size() == 1 ? " " : "s ") + names + (open.size() == 1 ? " is" : " are") +
+           " not a closed, consistently wound mesh: a ray that enters its medium may never leave it. A pane or "
+           "sheet of glass is thin-walled glass: `thin_walled 1` in its MTL material, or glTF's "
+           "KHR_materials_transmission without KHR_materials_volume";
+}
+
 std::set<std::uint32_t> opaqueObjectsMetFromBehind(const Scene& scene, const std::vector<glm::dvec3>& rayStarts) {
     auto isGlass = [&](const Triangle& t) { return scene.materials[t.material].model == MaterialModel::Glass; };
     std::map<std::uint32_t, std::vector<const Triangle*>> opaque;

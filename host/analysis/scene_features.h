@@ -97,6 +97,11 @@ SceneFeatures analyseScene(const Scene& scene, std::size_t flatAnalysisTriangles
 // directed edge does not appear exactly once with its reverse exactly once.
 std::set<std::uint32_t> openGlassObjects(const Scene& scene);
 
+// What a user is told when the scene has open glass objects (`features.openGlassObjects`), naming
+// a few: a ray that enters such a medium may never leave it, and a pane or sheet of glass is
+// thin-walled glass (render-model-decisions.md, "Thin-walled glass"). Empty without any.
+std::string openGlassWarning(const Scene& scene, const SceneFeatures& features);
+
 // The objects with opaque triangles that a ray may meet from behind (render-model-decisions.md,
 // "Coincident opaque surfaces"): those whose opaque triangles are not a closed, consistently wound
 // mesh with outward normals (an open sheet, a mesh wound inward), those that also have glass

@@ -43,6 +43,7 @@ int infoCommand(int argc, char** argv, int first) {
     Bvh bvh = buildSceneBvh(scene, [&](double fraction) { phases.update("building the BVH", fraction); });
     phases.finish();
     const SceneFeatures features = analysis.get();
+    if (const std::string open = openGlassWarning(scene, features); !open.empty()) warn(open);
     std::map<std::uint32_t, std::size_t> trianglesPerMaterial;
     for (const Triangle& t : scene.triangles) ++trianglesPerMaterial[t.material];
 

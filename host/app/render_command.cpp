@@ -172,6 +172,7 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
         stats.addPhase("bvh", bvh.stats.buildSeconds);
         const auto [features, analysisSeconds] = analysis.get();
         stats.addPhase("analysis", analysisSeconds);
+        if (const std::string open = openGlassWarning(scene, features); !open.empty()) warn(open);
         command.gpu.features = &features;
         // The renderers report "rendering" from 0 as they begin to trace, after their analysis and
         // upload (the Vulkan one reports those phases too).

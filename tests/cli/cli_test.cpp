@@ -268,6 +268,31 @@ TEST_F(Cli, InfoReportsMediumPriorities) {
     EXPECT_NE(r.output.find("overlapping media by priority: compiled in"), std::string::npos) << r.output;
 }
 
+// A glass sheet (one open triangle) beside a closed glass tetrahedron: rendering and `info` name
+// the sheet, not the tetrahedron, as glass a ray may enter and never leave, and point to
+// thin-walled glass; made thin-walled, the sheet is no medium and nothing is said.
+TEST_F(Cli, OpenGlassIsNamedWithTheThinWalledHint) {
+    const std::string geometry = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\no tetrahedron\nusemtl solid\nf 1 3 2\nf 1 2 4\n"
+                                 "f 1 4 3\nf 2 3 4\no sheet\nusemtl pane\nf 2 3 4\n";
+    write("open.mtl", "newmtl solid\nshader 4\nnewmtl pane\nshader 4\n");
+    write("open.obj", "mtllib open.mtl\n" + geometry);
+    for (const std::string& command : {"render " + path("open.obj") + " --width 8 --height 6 -o " + path("open.png"),
+                                      "info " + path("open.obj")}) {
+        CommandRun r = vitrum(command);
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_NE(r.output.find("warning: glass object \"open.obj/sheet\" is not a closed, consistently wound mesh"),
+                  std::string::npos)
+            << r.output;
+        EXPECT_NE(r.output.find("`thin_walled 1`"), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("open.obj/tetrahedron"), std::string::npos) << r.output;
+    }
+    write("thin.mtl", "newmtl solid\nshader 4\nnewmtl pane\nshader 4\nthin_walled 1\n");
+    write("thin.obj", "mtllib thin.mtl\n" + geometry);
+    CommandRun thin = vitrum("render " + path("thin.obj") + " --width 8 --height 6 -o " + path("thin.png"));
+    EXPECT_EQ(thin.exitCode, 0) << thin.output;
+    EXPECT_EQ(thin.output.find("warning"), std::string::npos) << thin.output;
+}
+
 // bubble.json with its camera moved into the air bubble, which lies in the glass block.
 TEST_F(Cli, InfoSaysWhichMediaTheCameraIsIn) {
     std::ifstream in(std::string(VITRUM_SOURCE_DIR) + "/scenes/bubble.json");
