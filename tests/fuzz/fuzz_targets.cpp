@@ -70,7 +70,8 @@ int fuzzObjMtl(const std::uint8_t* data, std::size_t size) {
     else
         writeFile("fuzz.mtl", bytes.substr(split + 1));
     try {
-        analyseScene(loadScene(folder() / "fuzz.obj"));
+        const Scene scene = loadScene(folder() / "fuzz.obj");
+        openGlassWarning(scene, analyseScene(scene));  // names objects: their indices must hold
     } catch (const InputError&) {
     }
     return 0;
@@ -83,7 +84,7 @@ int fuzzGltf(const std::uint8_t* data, std::size_t size) {
     try {
         // Its BVH too: two levels where nodes share a mesh (instancing).
         const Scene scene = loadScene(file);
-        analyseScene(scene);
+        openGlassWarning(scene, analyseScene(scene));
         buildSceneBvh(scene);
     } catch (const InputError&) {
     }
