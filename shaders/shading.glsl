@@ -306,7 +306,8 @@ void scatter(GpuMaterial m) {
         if (ieeeDot(n, d) >= 0.0) n = facing;  // a shading normal on the wrong side: use the true one
         if (kTouchingProbe && st.touching.w > 0u) through = st.ray.origin.xyz + st.farthestTouching * d;
     }
-    // Index-matched glass: no optical interface; the same ray goes on with the new stack.
+    // Index-matched glass: no optical interface; the same ray goes on with the new stack (a thin
+    // glass's: with its own, through its tint).
     bool matched = (glass || thin) && n1 == n2;
     float eta = n1 / n2;
     float cosI = -ieeeDot(d, n);
