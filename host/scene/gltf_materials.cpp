@@ -150,7 +150,8 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
             m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, index, quoted, ignored);
         if (transmissionFactor < 1.0)
             ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 1)");
-        if (extension("KHR_materials_dispersion"))
+        if (const tinygltf::Value* dispersion = extension("KHR_materials_dispersion");
+            dispersion && extensionNumber(*dispersion, "KHR_materials_dispersion", "dispersion", 0.0, quoted) > 0.0)
             ignored.push_back("KHR_materials_dispersion (a thin wall's two faces undo each other's dispersion)");
         if (extension("KHR_materials_pbrSpecularGlossiness")) ignored.push_back("KHR_materials_pbrSpecularGlossiness");
     } else if (transmissionFactor >= 0.5) {

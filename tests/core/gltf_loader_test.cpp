@@ -795,6 +795,7 @@ TEST_F(GltfLoader, ThinWalledGlassIsThinGlassTintedByItsBaseColour) {
     const json transmission = {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}};
     json zeroThickness = transmission;
     zeroThickness["KHR_materials_volume"] = {{"thicknessFactor", 0.0}, {"attenuationDistance", 1.0}};
+    zeroThickness["KHR_materials_dispersion"] = {{"dispersion", 0.0}};  // none: nothing to warn about
     json tinted = transmission;
     tinted["KHR_materials_ior"] = {{"ior", 1.52}};
     tinted["KHR_materials_dispersion"] = {{"dispersion", 0.5}};
