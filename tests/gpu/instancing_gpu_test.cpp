@@ -1,5 +1,5 @@
 // Instancing on both backends (issue 50; docs/gpu-design.md, "Instancing"): placed copies render
-// as their flattened scene, a mirroring copy's surfaces face out, two copies of a cube placed face
+// as their flattened scene (of glass and of thin glass), a mirroring copy's surfaces face out, two copies of a cube placed face
 // to face are one box, scaling keeps the image, and a pixel suspended inside an instance resumes
 // there.
 #include <gtest/gtest.h>
@@ -44,6 +44,24 @@ TEST(Instancing, PlacedCopiesRenderAsTheirFlattenedSceneOnBothBackends) {
     EXPECT_EQ(instanced.cpuStats.inconsistentMedia, 0u);
     EXPECT_EQ(instanced.gpuStats.traversalStackOverflows, 0u);
     EXPECT_EQ(instanced.gpuStats.refractionRays, flat.gpuStats.refractionRays);
+}
+
+// The copies of thin glass (render-model-decisions.md, "Thin-walled glass"), tinted, as their
+// flattened scene: a copy's normals, moved to the world, face the ray as the flattened triangles'
+// do, and no copy is a medium.
+TEST(Instancing, ThinGlassCopiesRenderAsTheirFlattenedScene) {
+    Scene scene = instancedScene();
+    scene.materials[1] = makeMaterial(MaterialModel::ThinGlass, glm::vec3(0.0f), glm::vec3(0.9f, 0.5f, 0.3f), {},
+                                      1.0f, 1.7f);
+    RenderPair instanced = renderBoth(scene);
+    RenderPair flat = renderBoth(flattened(scene));
+    expectImagesMatch(instanced);
+    expectSameImage(instanced.gpu, flat.gpu);
+    expectSameImage(instanced.cpu, flat.cpu);
+    EXPECT_GT(instanced.gpuStats.refractionRays, 0u);
+    EXPECT_EQ(instanced.gpuStats.refractionRays, flat.gpuStats.refractionRays);
+    EXPECT_EQ(instanced.gpuStats.maxMediumDepth, 0u);
+    EXPECT_EQ(instanced.cpuStats.maxMediumDepth, 0u);
 }
 
 // A mirroring instance's triangles face out as its flattened copy's do (the loaders reverse the
