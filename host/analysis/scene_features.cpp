@@ -146,13 +146,13 @@ std::set<std::uint32_t> openGlassObjects(const Scene& scene) {
 
 std::string openGlassWarning(const Scene& scene, const SceneFeatures& features) {
     if (features.openGlassObjects == 0) return "";
-    const std::set<std::uint32_t> open = openGlassObjects(scene);
     std::string names;
-    std::size_t named = 0;
-    for (auto it = open.begin(); it != open.end() && named < 3; ++it, ++named)
-        names += std::string(named == 0 ? "" : ", ") + "\"" + scene.objectNames[*it] + "\"";
-    if (open.size() > named) names += " and " + std::to_string(open.size() - named) + " more";
-    return "glass object" + std::string(open.size() == 1 ? " " : "s ") + names + (open.size() == 1 ? " is" : " are") +
+    for (std::uint32_t object : features.openGlassNamed)
+        names += std::string(names.empty() ? "" : ", ") + "\"" + scene.objectNames[object] + "\"";
+    const std::size_t open = features.openGlassObjects;
+    if (open > features.openGlassNamed.size())
+        names += " and " + std::to_string(open - features.openGlassNamed.size()) + " more";
+    return "glass object" + std::string(open == 1 ? " " : "s ") + names + (open == 1 ? " is" : " are") +
            " not a closed, consistently wound mesh: a ray that enters its medium may never leave it. A pane or "
            "sheet of glass is thin-walled glass: `thin_walled 1` in its MTL material, or glTF's "
            "KHR_materials_transmission without KHR_materials_volume";
@@ -257,6 +257,7 @@ SceneFeatures analyseScene(const Scene& scene, std::size_t flatAnalysisTriangles
     f.opaqueContactPossible = f.glass && (byBoxes ? opaque : findGlassNearOpaque(compared, margin).found);
     const std::set<std::uint32_t> open = openGlassObjects(scene);
     f.openGlassObjects = std::uint32_t(open.size());
+    for (auto it = open.begin(); it != open.end() && f.openGlassNamed.size() < 3; ++it) f.openGlassNamed.push_back(*it);
     // A primary ray's media are those where it starts: off the camera's surface on its side.
     const RayOffsetScale offsets = rayOffsetScale(scene);
     // What the camera can lie on or inside: the world's triangles and, where the scene has

@@ -59,6 +59,7 @@ struct SceneFeatures {
     // exactly two triangles in opposite directions): rays can leave them without entering, or
     // enter them and never leave, so the medium stack can hold more than their nesting says.
     std::uint32_t openGlassObjects = 0;
+    std::vector<std::uint32_t> openGlassNamed;  // the first few of them, for openGlassWarning
     // The most media a ray can be inside at once: 0 without glass; the GPU's whole stack
     // (gpu::kMaxMediumDepth) when some glass object is open; else 1 + the most other glass objects
     // whose boxes overlap one glass object's box (an upper bound on how deep they nest), capped
@@ -98,7 +99,7 @@ SceneFeatures analyseScene(const Scene& scene, std::size_t flatAnalysisTriangles
 std::set<std::uint32_t> openGlassObjects(const Scene& scene);
 
 // What a user is told when the scene has open glass objects (`features.openGlassObjects`), naming
-// a few: a ray that enters such a medium may never leave it, and a pane or sheet of glass is
+// `features.openGlassNamed`: a ray that enters such a medium may never leave it, and a pane or sheet of glass is
 // thin-walled glass (render-model-decisions.md, "Thin-walled glass"). Empty without any.
 std::string openGlassWarning(const Scene& scene, const SceneFeatures& features);
 

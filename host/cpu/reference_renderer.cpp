@@ -441,7 +441,7 @@ private:
         const Real r = optics::fresnel(scene_.settings.fresnel, n1, n2, cosI);
         const optics::PaneTerms<Real> pane = optics::thinPane(r);
         Color colour(0);
-        if (optics::refract(d, hit.shadingNormal, n1 / n2)) {
+        if (optics::cosSquaredTransmitted(d, hit.shadingNormal, n1 / n2) >= Real(0)) {  // as the kernel's cos2t
             const Color wt = weight * pane.transmittance * tint;
             colour += pane.transmittance * tint *
                       traceChild(hit.position, through, d, depth, media, wt, false, sample, counters);
