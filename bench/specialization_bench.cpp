@@ -147,7 +147,9 @@ int run(int argc, char** argv) {
              << (k.touchingProbe ? "" : "touching surfaces, ") << (k.opaqueContact ? "" : "glass on opaque surfaces, ")
              << (k.coincidentOpaque ? "" : "coincident opaque surfaces, ")
              << (k.textures ? "" : "textures, ")
-             << (k.materialModels >> 4 & 1u ? "" : "glass, ") << "other backgrounds |\n";
+             << (k.materialModels >> std::uint32_t(MaterialModel::Glass) & 1u ? "" : "glass, ")
+             << (k.materialModels >> std::uint32_t(MaterialModel::ThinGlass) & 1u ? "" : "thin glass, ")
+             << "other backgrounds |\n";
     }
     fs::remove_all(cacheRoot);
 
