@@ -107,6 +107,9 @@ float objectDispersion(uint object) {
     return uintBitsToFloat(imageLoad(objectMediumTexels, int(kObjectMediumTexels * object + 1u)).y);
 }
 
+// The colour light crossing the object's surface takes on (Material::tint), white for none.
+vec3 objectTint(uint object) { return fetchVec4(objectMediumTexels, kObjectMediumTexels * object, 2u).xyz; }
+
 uint wavelengthCount() { return imageLoad(wavelengthTexels, 0).x; }
 vec4 wavelengthSample(uint k) { return fetchVec4(wavelengthTexels, 1u, k); }
 

@@ -137,6 +137,18 @@ bool crossGlass(inout uvec4 media, inout uint count) {
     return entering;
 }
 
+// What crossing a glass hit's interface tints (render-model-decisions.md, "Glass tint"): the
+// product of the tints of the surfaces it crosses, the hit object's first, then the touching
+// objects' nearest first, in the CPU reference's order.
+vec3 crossingTint() {
+    vec3 tint = objectTint(st.hit.object);
+    uint touchingCount = kTouchingProbe ? st.touching.w : 0u;
+    if (touchingCount > 0u) tint *= objectTint(st.touching.x & 0x7FFFFFFFu);
+    if (touchingCount > 1u) tint *= objectTint(st.touching.y & 0x7FFFFFFFu);
+    if (touchingCount > 2u) tint *= objectTint(st.touching.z & 0x7FFFFFFFu);
+    return tint;
+}
+
 // Whether a glass hit on object k's surface, with no touching surfaces, is a false hit: k's
 // medium has a lower priority than the medium the ray is in (`media`, `count`: its stack before
 // the hit), and the ray enters k, or leaves k from inside it. The ray goes on through it with the

@@ -289,6 +289,8 @@ void scatter(GpuMaterial m) {
     uvec4 media = st.ray.media;
     uint count = mediaCount(st.ray);
     vec3 through = p;  // where a transmitted ray starts: beyond every surface of the interface
+    // What the transmitted light takes on: a thin glass's Kd, a tinted glass's surfaces (below).
+    vec3 tint = thin ? diffuseColour(m) : vec3(1.0);
     if (usesMaterial(kMaterialGlass) && glass) {
         bool falseSurface = falseHit(media, count, st.hit.object, ieeeDot(d, facing) < 0.0);
         bool entering = crossGlass(media, count);
@@ -301,6 +303,7 @@ void scatter(GpuMaterial m) {
             n2 = n1;
             counters.falseHits += 1u;
         }
+        if (kGlassTints && !falseSurface) tint = crossingTint();  // a false surface is no surface
         if (!entering) facing = -facing;
         if (!entering) n = -n;
         if (ieeeDot(n, d) >= 0.0) n = facing;  // a shading normal on the wrong side: use the true one
@@ -314,8 +317,7 @@ void scatter(GpuMaterial m) {
     float cos2t = cosSquaredTransmitted(d, n, eta);
     float r = fresnelReflectance(glass || thin ? fresnelModel() : kFresnelSchlick, n1, n2, cosI, cos2t);
     if ((glass || thin) && !matched && cos2t < 0.0) counters.totalInternalReflections += 1u;
-    vec3 transmitted = w * (1.0 - r);
-    vec3 tint = thin ? diffuseColour(m) : vec3(1.0);
+    vec3 transmitted = kGlassTints && glass ? w * (1.0 - r) * tint : w * (1.0 - r);
     if (thin) {  // a pane: its faces' reflections summed, the transmission tinted and undeviated
         vec2 pane = thinPane(r);
         transmitted = w * pane.y * tint;
@@ -335,7 +337,7 @@ void scatter(GpuMaterial m) {
             counters.refractionRays += 1u;
         }
     }
-    PendingRay next = matched ? childRay(transmittedOrigin, d, thin ? w * tint : w, media, count, depth)
+    PendingRay next = matched ? childRay(transmittedOrigin, d, thin || (kGlassTints && glass) ? w * tint : w, media, count, depth)
                               : childRay(offsetRayOrigin(p, facing), reflectDirection(d, n), mirror ? w * m.specular.xyz : w * r,
                                          st.ray.media, mediaCount(st.ray), depth + 1u);
     // An index-matched continuation is the same ray going on at its own depth, not a new branch:

@@ -213,6 +213,7 @@ SceneFeatures analyseScene(const Scene& scene, std::size_t flatAnalysisTriangles
                 if (m.attenuation != glm::vec3(0.0f)) f.absorbingMedia = true;
                 glassPriorities.insert(m.priority);
                 if (m.abbe > 0.0f) f.dispersion = true;
+                if (m.tint != glm::vec3(1.0f)) f.glassTints = true;
                 break;
             case MaterialModel::Mirror: f.reflection = true; break;
             case MaterialModel::ThinGlass:  // no medium; its tint is the diffuse colour or texture
@@ -325,6 +326,7 @@ std::vector<std::string> SceneFeatures::describe() const {
         std::string("absorbing media (Beer-Lambert): ") + yesNo(absorbingMedia),
         std::string("overlapping media by priority: ") + yesNo(mediumPriorities),
         std::string("dispersion (wavelength samples): ") + yesNo(dispersion),
+        std::string("tinted glass surfaces: ") + yesNo(glassTints),
         std::string("touching glass surfaces possible: ") + yesNo(touchingMediaPossible),
         std::string("glass resting on opaque surfaces possible: ") + yesNo(opaqueContactPossible),
         std::string("coincident opaque surfaces of two objects possible: ") + yesNo(coincidentOpaquePossible),
@@ -347,6 +349,7 @@ nlohmann::json toJson(const SceneFeatures& f) {
         {"absorbing_media", f.absorbingMedia},
         {"medium_priorities", f.mediumPriorities},
         {"dispersion", f.dispersion},
+        {"glass_tints", f.glassTints},
         {"touching_media_possible", f.touchingMediaPossible},
         {"opaque_contact_possible", f.opaqueContactPossible},
         {"coincident_opaque_possible", f.coincidentOpaquePossible},

@@ -31,6 +31,9 @@ struct SceneFeatures {
     // Some glass disperses (MTL `Vd`): a ray meeting it splits into wavelength samples
     // (render-model-decisions.md, "Dispersion").
     bool dispersion = false;
+    // Some glass tints the light crossing its surface (Material::tint, glTF's base colour of a
+    // volume; render-model-decisions.md, "Glass tint").
+    bool glassTints = false;
     // Two triangles of different glass objects that may lie within twice the touching distance
     // of each other (analysis/glass_proximity.h): only then can a touching probe find anything, so
     // otherwise neither backend probes. Nested objects apart from each other need no probe.

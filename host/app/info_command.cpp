@@ -67,6 +67,8 @@ int infoCommand(int argc, char** argv, int first) {
             std::printf("  Tf %.3g %.3g %.3g", m.attenuation.x, m.attenuation.y, m.attenuation.z);
         if (m.model == MaterialModel::Glass && m.priority != 0) std::printf("  priority %d", m.priority);
         if (m.model == MaterialModel::Glass && m.abbe > 0.0f) std::printf("  Vd %.4g", m.abbe);
+        if (m.model == MaterialModel::Glass && m.tint != glm::vec3(1.0f))  // at its surface (glTF's base colour)
+            std::printf("  tint %.3g %.3g %.3g", m.tint.x, m.tint.y, m.tint.z);
         // Linear, as the renderers read them (a glTF's factors, an MTL's colours decoded).
         if (m.model == MaterialModel::Phong)
             std::printf("  Kd %.3g %.3g %.3g  Ks %.3g %.3g %.3g  Ns %.4g", m.diffuse.x, m.diffuse.y, m.diffuse.z,

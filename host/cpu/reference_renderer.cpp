@@ -384,6 +384,10 @@ private:
         const Real hitIor = dispersed(hit.material->ior, hit.object, sample);
         Real n1 = entering ? mediumIor(media, sample) : hitIor;
         Real n2 = entering && crossings.size() == 1 ? hitIor : mediumIor(inside, sample);
+        // What the light crossing takes on: the tint of every surface it crosses, in order
+        // (render-model-decisions.md, "Glass tint").
+        Color tint(1);
+        for (const Crossing& c : crossings) tint *= Color(objectTint(c.object));
         // A surface of a medium of lower priority than the one the ray is in, entered or left
         // from inside, is a false hit: no interface, the ray goes on through it (Schmidt and
         // Budge, JGT 2002; render-model-decisions.md, "Overlapping media by priority").
@@ -391,6 +395,7 @@ private:
             (entering || std::find(media.begin(), media.end(), hit.object) != media.end()) &&
             priority(hit.object) < priority(media[ruling(media)])) {
             n1 = n2 = mediumIor(media, sample);
+            tint = Color(1);  // a false surface is no surface
             counters.falseHits += 1;
         }
 
@@ -401,9 +406,9 @@ private:
         const Vec3 through = crossings.size() == 1 ? hit.position : rayOrigin + farT * d;
         if (n1 == n2) {
             // Index-matched: no optical interface. The same ray goes on, at the same depth, with the
-            // updated stack (render model, "The ray tree").
-            return trace(through, offsetRayOrigin(through, -facing, offsetScale_), d, depth, inside, weight, sample,
-                         counters);
+            // updated stack (render model, "The ray tree"), through the surfaces' tint.
+            return tint * trace(through, offsetRayOrigin(through, -facing, offsetScale_), d, depth, inside,
+                                weight * tint, sample, counters);
         }
         const Real eta = n1 / n2;
         const Real cosI = -glm::dot(d, n);
@@ -411,9 +416,10 @@ private:
         const auto refracted = optics::refract(d, n, eta);
         Color colour(0);
         if (refracted) {
-            const Color wt = weight * (Real(1) - r);
+            const Color wt = weight * (Real(1) - r) * tint;
             const Vec3 origin = offsetRayOrigin(through, -facing, offsetScale_);
-            colour += (Real(1) - r) * traceChild(through, origin, *refracted, depth, inside, wt, false, sample, counters);
+            colour += (Real(1) - r) * tint *
+                      traceChild(through, origin, *refracted, depth, inside, wt, false, sample, counters);
         } else {
             counters.totalInternalReflections += 1;  // R = 1 (the Fresnel functions return it)
         }
@@ -561,6 +567,12 @@ private:
     }
 
     int priority(std::uint32_t object) const { return scene_.materials[mediumMaterials_[object]].priority; }
+    // The tint of the object's surface, as packScene gives the kernel: its medium's glass's, white
+    // for anything else.
+    glm::vec3 objectTint(std::uint32_t object) const {
+        const Material& m = scene_.materials[mediumMaterials_[object]];
+        return m.model == MaterialModel::Glass ? m.tint : glm::vec3(1.0f);
+    }
 
     // IOR of the medium a ray is in, or the scene's air.
     Real mediumIor(const MediumStack& media, int sample) const {

@@ -35,14 +35,16 @@ std::span<const T> spanOf(const std::vector<T>& v) {
 }
 
 // gpu::kObjectMediumTexels an object: its medium's material's `attenuation` (Tf, Ni), its
-// priority and its dispersion, which bindings.glsl's objectMedium(), objectPriority() and
-// objectDispersion() read.
+// priority and its dispersion, its surface's tint, which bindings.glsl's objectMedium(),
+// objectPriority(), objectDispersion() and objectTint() read.
 std::vector<glm::vec4> objectMediumTexels(const PackedTables& packed) {
+    static_assert(gpu::kObjectMediumTexels == 3u, "one push_back a texel below");
     std::vector<glm::vec4> texels;
     for (std::size_t object = 0; object < packed.objectMaterials.size(); ++object) {
         texels.push_back(packed.materials[packed.objectMaterials[object]].attenuation);
         texels.push_back(glm::vec4(std::bit_cast<float>(packed.objectPriorities[object]), packed.objectDispersions[object],
                                    0.0f, 0.0f));
+        texels.push_back(glm::vec4(packed.objectTints[object], 0.0f));
     }
     return texels;
 }

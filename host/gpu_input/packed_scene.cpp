@@ -62,6 +62,7 @@ PackedTables packTables(const Scene& scene) {
         packed.objectPriorities.push_back(m ? m->priority : 0);
         // As the CPU reference takes it (cpu/reference_renderer.cpp): glass media only.
         packed.objectDispersions.push_back(m && m->model == MaterialModel::Glass ? float(cauchyB(m->ior, m->abbe)) : 0.0f);
+        packed.objectTints.push_back(m && m->model == MaterialModel::Glass ? m->tint : glm::vec3(1.0f));
     }
     if (std::any_of(packed.objectDispersions.begin(), packed.objectDispersions.end(), [](float b) { return b != 0.0f; }))
         packed.wavelengths = wavelengthSamples(scene.settings.wavelengths);

@@ -25,6 +25,7 @@ struct PackedTables {
     std::vector<std::uint32_t> objectMaterials;
     std::vector<std::int32_t> objectPriorities;  // the priority of each object's medium
     std::vector<float> objectDispersions;        // the Cauchy B of each object's medium (0: none)
+    std::vector<glm::vec3> objectTints;          // the tint of each object's surface (Material::tint)
     // The scene's wavelength samples where some medium disperses, else none.
     std::vector<WavelengthSample> wavelengths;
 };

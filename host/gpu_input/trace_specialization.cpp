@@ -27,6 +27,7 @@ TraceSpecialization TraceSpecialization::forScene(const Scene& scene, const Scen
     s.coincidentOpaque = f.coincidentOpaquePossible;
     s.mediumPriorities = f.mediumPriorities;
     s.dispersion = f.dispersion;
+    s.glassTints = f.glassTints;
     s.instancing = !scene.instances.empty();
     s.textures = f.textures;
     s.backgroundKind = std::uint32_t(f.background);
@@ -58,6 +59,7 @@ TraceKernelConstants TraceSpecialization::constants() const {
     c[gpu::kConstantMediumPriorities] = mediumPriorities ? 1u : 0u;
     c[gpu::kConstantDispersion] = dispersion ? 1u : 0u;
     c[gpu::kConstantInstancing] = instancing ? 1u : 0u;
+    c[gpu::kConstantGlassTints] = glassTints ? 1u : 0u;
     return c;
 }
 
@@ -90,6 +92,7 @@ std::vector<std::string> TraceSpecialization::describe() const {
         std::string("coincident opaque surfaces: ") + onOff(coincidentOpaque),
         std::string("overlapping media by priority: ") + onOff(mediumPriorities),
         std::string("dispersion: ") + onOff(dispersion),
+        std::string("glass tints: ") + onOff(glassTints),
         std::string("instancing: ") + onOff(instancing),
         std::string("textures: ") + onOff(textures),
         "background: " + kindName(backgroundKind, backgroundKindName),
@@ -112,6 +115,7 @@ nlohmann::json toJson(const TraceSpecialization& s) {
         {"coincident_opaque", s.coincidentOpaque},
         {"medium_priorities", s.mediumPriorities},
         {"dispersion", s.dispersion},
+        {"glass_tints", s.glassTints},
         {"instancing", s.instancing},
         {"textures", s.textures},
         {"background", kindName(s.backgroundKind, backgroundKindName)},

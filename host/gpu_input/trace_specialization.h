@@ -33,6 +33,7 @@ struct TraceSpecialization {
     bool coincidentOpaque = true;  // opaque surfaces of two objects may coincide (coincidentOpaquePossible)
     bool mediumPriorities = true;  // glass media of different priorities (SceneFeatures::mediumPriorities)
     bool dispersion = true;        // some glass disperses (SceneFeatures::dispersion)
+    bool glassTints = true;        // some glass tints what crosses its surface (SceneFeatures::glassTints)
     bool instancing = true;        // the scene has instances: a two-level BVH (Scene::instances)
     bool textures = true;
     std::uint32_t backgroundKind = kAnyKind;  // BackgroundKind or kAnyKind

@@ -145,9 +145,9 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
         // Thin-walled (no volume, or thicknessFactor 0: KHR_materials_volume): a wall of no
         // thickness whose transmitted light the base colour tints (KHR_materials_transmission).
         m.model = MaterialModel::ThinGlass;
-        m.diffuse = base;
+        m.diffuse = glm::clamp(base, 0.0f, 1.0f);  // a tint: the light it passes, never more
         if (pbr.baseColorTexture.index >= 0)
-            m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, index, quoted, ignored);
+            m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, m.diffuse, index, quoted, ignored);
         if (transmissionFactor < 1.0)
             ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 1)");
         if (const tinygltf::Value* dispersion = extension("KHR_materials_dispersion");
@@ -163,8 +163,9 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
         }
         if (transmissionFactor < 1.0)
             ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 1)");
-        if (base != glm::vec3(1.0f))
-            ignored.push_back("baseColorFactor (glass is tinted by KHR_materials_volume's attenuation only)");
+        // The base colour tints the light passing through the volume's boundary, at every
+        // crossing (KHR_materials_volume, "Base Color and Absorption").
+        m.tint = glm::clamp(base, 0.0f, 1.0f);
         const double distance = extensionNumber(*volume, "KHR_materials_volume", "attenuationDistance",
                                                 std::numeric_limits<double>::infinity(), quoted);
         if (std::isfinite(distance) && distance > 0.0) {
@@ -176,7 +177,8 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
                 m.attenuation[i] =
                     float(-std::log(std::clamp(colour[i], double(std::numeric_limits<float>::min()), 1.0)) / distance);
         }
-        if (pbr.baseColorTexture.index >= 0) ignored.push_back("baseColorTexture");
+        if (pbr.baseColorTexture.index >= 0)
+            ignored.push_back("baseColorTexture (a glass volume is tinted by its baseColorFactor alone)");
         if (extension("KHR_materials_pbrSpecularGlossiness")) ignored.push_back("KHR_materials_pbrSpecularGlossiness");
     } else if (const tinygltf::Value* specularGlossiness = extension("KHR_materials_pbrSpecularGlossiness")) {
         specularGlossinessMaterial(*specularGlossiness, index, quoted, m, ignored);

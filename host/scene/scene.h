@@ -49,6 +49,10 @@ struct Material {
     // Of a glass: its Abbe number V_d (MTL `Vd`), with `ior` as n_d; 0 for none. Its index then
     // depends on the wavelength (render_model/dispersion.h).
     float abbe = 0.0f;
+    // Of a glass: the colour light passing through its surface takes on, at every crossing of it
+    // (glTF's base colour of a transmissive volume, KHR_materials_volume: "Base Color and
+    // Absorption"); white for none. A thin glass's tint is its `diffuse`.
+    glm::vec3 tint{1.0f};
     int diffuseTexture = -1;      // index into Scene::textures, -1 for none
 };
 

@@ -81,6 +81,7 @@ std::uint64_t sceneFingerprint(const Scene& scene) {
         d.add(m.attenuation);
         d.add(m.priority);
         d.add(m.abbe);
+        d.add(m.tint);
         d.add(m.diffuseTexture);
     }
     d.add(scene.textures.size());

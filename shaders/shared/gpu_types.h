@@ -148,15 +148,16 @@ VITRUM_CONST uint kFresnelSchlickExp2 = 2u;
 // ---- Texel buffers -------------------------------------------------------------------------------
 // The scene's read-only data are bound as storage texel buffers of 16-byte uvec4 texels
 // (shaders/bindings.glsl): a struct is this many consecutive texels (gpu_layout.h checks them
-// against the struct sizes). An object's medium is two texels: its material's `attenuation` (Tf,
-// Ni), then its priority (int bits in x; render-model-decisions.md, "Overlapping media by priority").
+// against the struct sizes). An object's medium is three texels: its material's `attenuation` (Tf,
+// Ni); its priority (int bits in x; render-model-decisions.md, "Overlapping media by priority")
+// and Cauchy B (y); its surface's tint (xyz; "Glass tint").
 VITRUM_CONST uint kTraversalNodeTexels = 4u;
 VITRUM_CONST uint kGpuInstanceTexels = 8u;
 VITRUM_CONST uint kTraceStateTexels = 16u;  // a pixel's saved state (shaders/suspend.glsl)
 VITRUM_CONST uint kTriangleVerticesTexels = 3u;
 VITRUM_CONST uint kGpuMaterialTexels = 4u;
 VITRUM_CONST uint kGpuLightTexels = 2u;
-VITRUM_CONST uint kObjectMediumTexels = 2u;
+VITRUM_CONST uint kObjectMediumTexels = 3u;
 
 // Numbered like vitrum::BackgroundKind and vitrum::TextureFilter.
 VITRUM_CONST uint kBackgroundConstant = 0u;

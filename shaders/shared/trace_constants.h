@@ -28,7 +28,8 @@ VITRUM_CONST uint kConstantPersistentSubgroups = 16u;
 // A scene feature, numbered after the others.
 VITRUM_CONST uint kConstantDispersion = 17u;
 VITRUM_CONST uint kConstantInstancing = 18u;
-VITRUM_CONST uint kTraceConstantCount = 19u;
+VITRUM_CONST uint kConstantGlassTints = 19u;
+VITRUM_CONST uint kTraceConstantCount = 20u;
 VITRUM_GPU_END
 
 #endif

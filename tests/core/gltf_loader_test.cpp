@@ -828,6 +828,57 @@ TEST_F(GltfLoader, ThinWalledGlassIsThinGlassTintedByItsBaseColour) {
     EXPECT_FLOAT_EQ(texture.texels[0].y, 0.8f * srgbToLinear(128.0f / 255.0f));
 }
 
+// The base colour of a glass volume tints the light passing through its boundary, at every
+// crossing (KHR_materials_volume, "Base Color and Absorption"): Material::tint, as glass of the
+// ABeautifulGame pawns and the StainedGlassLamp's beads of Khronos's sample assets have it. A
+// factor outside [0, 1] is kept within it (a tint never adds light), a thin glass's too; a base
+// colour texture is not read for a volume, and the warning says so.
+TEST_F(GltfLoader, VolumeGlassIsTintedByItsBaseColourFactor) {
+    Image image(1, 1);
+    image.pixels = {glm::vec3(0.5f)};
+    GltfBuilder b;
+    b.embedTexture(image, dir_ / "texture.png");
+    const int uvs = b.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, 5126, "VEC2", 3);
+    const int positions = b.positions(kTriangle);
+    const json volume = {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                         {"KHR_materials_volume", {{"thicknessFactor", 0.02}}}};
+    auto base = [](json factor) { return json{{"baseColorFactor", std::move(factor)}, {"metallicFactor", 0.0}}; };
+    json textured = base({0.3, 0.5, 0.45, 1.0});
+    textured["baseColorTexture"] = {{"index", 0}};
+    for (const json& material :
+         {json{{"name", "clear"}, {"extensions", volume}},
+          json{{"name", "amber"}, {"extensions", volume}, {"pbrMetallicRoughness", base({1.0, 0.6, 0.2, 1.0})}},
+          json{{"name", "beyond"}, {"extensions", volume}, {"pbrMetallicRoughness", base({1.5, -0.5, 0.5, 1.0})}},
+          json{{"name", "textured"}, {"extensions", volume}, {"pbrMetallicRoughness", textured}},
+          json{{"name", "thin"},
+               {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}},
+               {"pbrMetallicRoughness", base({1.5, -0.5, 0.5, 1.0})}}})
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", positions}, {"TEXCOORD_0", uvs}}},
+                                 {"material", b.material(material)}})}});
+    const int before = warningCount();
+    ::testing::internal::CaptureStderr();
+    const Scene scene = load(b.write(dir_ / "tinted.gltf"));
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(warningCount(), before + 1) << warnings;
+    EXPECT_NE(warnings.find("(\"textured\"): ignored: baseColorTexture (a glass volume is tinted by its "
+                            "baseColorFactor alone)"),
+              std::string::npos)
+        << warnings;
+    ASSERT_EQ(scene.materials.size(), 5u);
+    for (std::size_t i = 0; i < 4; ++i) {
+        SCOPED_TRACE(scene.materials[i].name);
+        EXPECT_EQ(scene.materials[i].model, MaterialModel::Glass);
+        EXPECT_EQ(scene.materials[i].diffuseTexture, -1);
+    }
+    EXPECT_EQ(scene.materials[0].tint, glm::vec3(1.0f));
+    EXPECT_EQ(scene.materials[1].tint, glm::vec3(1.0f, 0.6f, 0.2f));
+    EXPECT_EQ(scene.materials[2].tint, glm::vec3(1.0f, 0.0f, 0.5f));
+    EXPECT_EQ(scene.materials[3].tint, glm::vec3(0.3f, 0.5f, 0.45f));
+    // A thin glass's tint, its diffuse colour, is kept within [0, 1] the same way.
+    EXPECT_EQ(scene.materials[4].model, MaterialModel::ThinGlass);
+    EXPECT_EQ(scene.materials[4].diffuse, glm::vec3(1.0f, 0.0f, 0.5f));
+}
+
 // tinygltf passes material extensions' values on unchecked: one of the wrong type is refused,
 // naming the material, the extension and the value, never read as absent (a transmissionFactor
 // "1" read as 0 would be plastic).

@@ -76,6 +76,22 @@ TEST(SceneFeatures, OnlyGlassOfDifferentPrioritiesNeedsThePriorityRule) {
     EXPECT_TRUE(TraceSpecialization::general().mediumPriorities);  // decided by the data at run time
 }
 
+// Only a glass that tints what crosses it calls for the tint: a tint on an opaque material (never
+// read) or a white one leaves the kernel without it.
+TEST(SceneFeatures, OnlyTintedGlassNeedsTheTint) {
+    Scene scene = loadProjectScene("scenes/water_glass.json");
+    EXPECT_FALSE(analyseScene(scene).glassTints);
+    for (Material& m : scene.materials)
+        if (m.model != MaterialModel::Glass) m.tint = glm::vec3(0.5f);
+    EXPECT_FALSE(analyseScene(scene).glassTints);
+    for (Material& m : scene.materials)
+        if (m.name == "water") m.tint = glm::vec3(1.0f, 1.0f, 0.9f);
+    const SceneFeatures f = analyseScene(scene);
+    EXPECT_TRUE(f.glassTints);
+    EXPECT_TRUE(TraceSpecialization::forScene(scene, f).glassTints);
+    EXPECT_TRUE(TraceSpecialization::general().glassTints);
+}
+
 TEST(SceneFeatures, GlassRestingOnAnOpaqueSurfaceNeedsTheContactCheck) {
     // A glass box on an opaque slab: standing on it, or a gap far below the touching distance
     // (1e-5 of the diagonal, here ~9e-5; the analysis looks twice as far), calls for the check;

@@ -154,6 +154,13 @@ public:
         // Thin-walled glass of a material of its own: a pane across the scene (sometimes through
         // the other objects) or a hollow sphere, tinted, sometimes textured.
         if (chance(0.25)) addThinGlass(scene);
+        // Glass whose surfaces tint what crosses them (glTF's base colour of a volume).
+        if (chance(0.25))
+            for (std::size_t i = 0; i < scene.materials.size(); ++i)
+                if (scene.materials[i].model == MaterialModel::Glass) {
+                    scene.materials[i].tint = vec3(uniform(0.2f, 1), uniform(0.2f, 1), uniform(0.2f, 1));
+                    drawn_ += ", the glass of material " + std::to_string(i) + " tinted";
+                }
         return transformed(scene, scale, shift);
     }
 
