@@ -4,6 +4,9 @@ attenuation on a checker floor, as glTF 2.0 with KHR_materials_transmission, KHR
 and KHR_materials_ior, a camera and a KHR_lights_punctual point light, so that it renders as a
 scene of its own (`vitrum render scenes/meshes/glass_set.gltf`) and inside scenes/glass_set.json.
 The three tumblers are one mesh's data: their meshes share its accessors, each with its own glass.
+Also scenes/meshes/sapphire.gltf, one file with its buffer in a data URI: a cut gem of glass whose
+surface the base colour tints (KHR_materials_volume, "Base Color and Absorption"), which
+scenes/glass_set.json places in front of the set.
 Standard library only; the outputs are committed. Run it from anywhere:
 python3 scenes/generate/make_gltf_scene.py
 
@@ -11,6 +14,7 @@ Meshes come from make_scenes.py and are checked as it checks them (closed, outwa
 written in glTF's +Y up: vitrum's (x, y, z) is glTF's (x, z, -y) (docs/scene-format.md, "glTF 2.0").
 """
 
+import base64
 import json
 import math
 import os
@@ -86,12 +90,14 @@ def primitives(buffer, mesh, materials):
     return out
 
 
-def glass(name, ior, attenuation=None, distance=None):
+def glass(name, ior, attenuation=None, distance=None, tint=(1, 1, 1)):
+    """A glass volume: absorption inside (attenuationColor after attenuationDistance), a tint at its
+    surface (the base colour)."""
     volume = {"thicknessFactor": 0.1}
     if attenuation is not None:
         volume.update({"attenuationColor": list(attenuation), "attenuationDistance": distance})
     return {"name": name,
-            "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0.0, "roughnessFactor": 0.0},
+            "pbrMetallicRoughness": {"baseColorFactor": list(tint) + [1], "metallicFactor": 0.0, "roughnessFactor": 0.0},
             "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0},
                            "KHR_materials_volume": volume, "KHR_materials_ior": {"ior": ior}}}
 
@@ -177,5 +183,32 @@ def main():
         f.write("\n")
 
 
+def sapphire():
+    """A gem of corundum (n 1.77) whose surface tints blue, resting on the floor in front of the set."""
+    materials = [glass("sapphire", 1.77, tint=(0.45, 0.6, 1.0))]
+    buffer = Buffer()
+    mesh = icosphere("sapphire", 0.22, 1, "sapphire")
+    mesh.faces = [(v, None, m) for v, _, m in mesh.faces]  # cut facets: flat
+    primitive = primitives(buffer, mesh, {"sapphire": 0})["sapphire"]
+    lowest = min(v[2] for v in mesh.vertices)
+    gltf = {
+        "asset": {"version": "2.0", "generator": "vitrum scenes/generate/make_gltf_scene.py"},
+        "extensionsUsed": ["KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior"],
+        "scene": 0,
+        "scenes": [{"name": "sapphire", "nodes": [0]}],
+        "nodes": [{"name": "sapphire", "mesh": 0, "translation": list(to_gltf((0.05, -1.55, -lowest + 1e-3)))}],
+        "meshes": [{"name": "sapphire", "primitives": [primitive]}],
+        "materials": materials,
+        "buffers": [{"uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(buffer.data)).decode(),
+                     "byteLength": len(buffer.data)}],
+        "bufferViews": buffer.views,
+        "accessors": buffer.accessors,
+    }
+    with open(os.path.join(MESHES, "sapphire.gltf"), "w") as f:
+        json.dump(gltf, f, indent=1)
+        f.write("\n")
+
+
 if __name__ == "__main__":
     main()
+    sapphire()
