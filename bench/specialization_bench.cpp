@@ -149,6 +149,8 @@ int run(int argc, char** argv) {
              << (k.textures ? "" : "textures, ")
              << (k.materialModels >> std::uint32_t(MaterialModel::Glass) & 1u ? "" : "glass, ")
              << (k.materialModels >> std::uint32_t(MaterialModel::ThinGlass) & 1u ? "" : "thin glass, ")
+             << (k.mediumPriorities ? "" : "priorities, ") << (k.dispersion ? "" : "dispersion, ")
+             << (k.glassTints ? "" : "glass tints, ") << (k.instancing ? "" : "instancing, ")
              << "other backgrounds |\n";
     }
     fs::remove_all(cacheRoot);
