@@ -1,5 +1,5 @@
 // Instancing on both backends (issue 50; docs/gpu-design.md, "Instancing"): placed copies render
-// as their flattened scene (of glass and of thin glass), a mirroring copy's surfaces face out, two copies of a cube placed face
+// as their flattened scene (of glass, tinted glass and thin glass), a mirroring copy's surfaces face out, two copies of a cube placed face
 // to face are one box, scaling keeps the image, and a pixel suspended inside an instance resumes
 // there.
 #include <gtest/gtest.h>
@@ -62,6 +62,23 @@ TEST(Instancing, ThinGlassCopiesRenderAsTheirFlattenedScene) {
     EXPECT_EQ(instanced.gpuStats.refractionRays, flat.gpuStats.refractionRays);
     EXPECT_EQ(instanced.gpuStats.maxMediumDepth, 0u);
     EXPECT_EQ(instanced.cpuStats.maxMediumDepth, 0u);
+}
+
+// Tinted glass copies (render-model-decisions.md, "Glass tint") as their flattened scene: each
+// copy is an object of its own whose surface takes its mesh's glass's tint, and the tint shows
+// (the centre of the image is not the untinted one's).
+TEST(Instancing, TintedGlassCopiesRenderAsTheirFlattenedScene) {
+    Scene scene = instancedScene();
+    ASSERT_EQ(scene.materials[1].model, MaterialModel::Glass);
+    const RenderPair untinted = renderBoth(scene);
+    scene.materials[1].tint = glm::vec3(0.6f, 0.9f, 0.4f);
+    const RenderPair instanced = renderBoth(scene);
+    const RenderPair flat = renderBoth(flattened(scene));
+    expectImagesMatch(instanced);
+    expectSameImage(instanced.gpu, flat.gpu);
+    expectSameImage(instanced.cpu, flat.cpu);
+    EXPECT_TRUE(instanced.gpuStats.kernel && instanced.gpuStats.kernel->glassTints);
+    EXPECT_GT(diffImages(instanced.gpu, untinted.gpu).shareOver005, 0.01);
 }
 
 // A mirroring instance's triangles face out as its flattened copy's do (the loaders reverse the
