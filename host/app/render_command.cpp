@@ -146,7 +146,7 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
         };
     Scene scene = loadScene(command.scenePath, loadOptions);
     if (writes) checkOutputsSpareTheScenesImages(command, scene);
-    applyOverrides(command, scene);
+    applyOverrides(command, scene, texelLimit);
     if (const std::string note = largeRenderNote(scene); !note.empty()) warn(note);
     const double loadSeconds = std::chrono::duration<double>(Clock::now() - loadStart).count();
     if (job && device) agreeOnTheImage(*job, *device, scene, command.scenePath, command.gpu);

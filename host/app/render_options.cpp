@@ -1,6 +1,7 @@
 // `vitrum render`'s options: read from the command line, checked, and applied to the scene.
 #include "app/render_options.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <initializer_list>
 
@@ -10,10 +11,15 @@
 #include "common/file_extension.h"
 #include "gpu/tile_size.h"
 #include "render_model/dispersion.h"
+#include "scene/environment_map.h"
 #include "scene/float_range.h"
 
 namespace vitrum {
 namespace {
+
+// The images an environment map may be (image/image_io.h reads them).
+constexpr std::initializer_list<const char*> kBackgroundMapExtensions = {
+    ".hdr", ".exr", ".pfm", ".png", ".jpg", ".jpeg", ".webp", ".ppm", ".pgm", ".pnm"};
 
 bool hasExtension(const std::string& path, std::initializer_list<const char*> extensions) {
     std::string ext = lowerCaseExtension(path);
@@ -60,7 +66,9 @@ docs/distributed.md).
   --fov DEG                vertical field of view, )" +
            kFovYRange + R"(
   --light X,Y,Z            a white point light; repeatable; replaces the scene's lights
-  --background R,G,B       constant background colour, linear RGB
+  --background R,G,B|FILE  constant background colour, linear RGB, or an environment map: an
+                           equirectangular image (.hdr, .exr, .pfm, .png, .jpg, .webp), as a
+                           scene's "spherical" background
   --stats FILE.json        write device, times by phase, rays by kind and limits hit
   --iteration-budget N     GPU loop steps per subgroup (8 pixels on lavapipe) and dispatch
                            (default )" +
@@ -123,9 +131,19 @@ RenderCommand parseRenderCommand(int argc, char** argv, int first) {
             c.fov = f;
         } else if (flag == "--light") c.lights.push_back(Arguments::toVec3(flag, args.valueOf(flag)));
         else if (flag == "--background") {
-            glm::vec3 b = Arguments::toVec3(flag, args.valueOf(flag));
-            if (b.x < 0 || b.y < 0 || b.z < 0) throw InputError("--background must not be negative");
-            c.background = b;
+            const std::string value = args.valueOf(flag);
+            if (hasExtension(value, kBackgroundMapExtensions)) {
+                c.backgroundMap = value;
+                c.background.reset();
+            } else {
+                if (std::count(value.begin(), value.end(), ',') != 2)
+                    throw InputError("--background takes a colour R,G,B or an image file (.hdr, .exr, .pfm, .png, "
+                                     ".jpg, .webp, .ppm), got \"" + value + "\"");
+                glm::vec3 b = Arguments::toVec3(flag, value);
+                if (b.x < 0 || b.y < 0 || b.z < 0) throw InputError("--background must not be negative");
+                c.background = b;
+                c.backgroundMap.clear();
+            }
         } else if (flag == "--stats") c.statsPath = args.valueOf(flag);
         else if (flag == "--iteration-budget") c.gpu.iterationBudget = Arguments::toUint(flag, args.valueOf(flag), kMinIterationBudget, 1u << 24);
         else if (flag == "--tile") c.gpu.tileSize = Arguments::toUint(flag, args.valueOf(flag), kMinTileSize, kMaxTileSize);
@@ -154,6 +172,7 @@ void checkOutputs(const RenderCommand& c) {
             throw InputError(out + ": cannot write the file: " + parent.string() + " is not a directory");
         checkWritable(out);
         checkNotAnInput(out, c.scenePath, "the scene file");
+        if (!c.backgroundMap.empty()) checkNotAnInput(out, c.backgroundMap, "the background map");
     }
 }
 
@@ -163,7 +182,7 @@ void checkOutputsSpareTheScenesImages(const RenderCommand& c, const Scene& scene
             if (!out.empty()) checkNotAnInput(out, texture.path, "one of the scene's images");
 }
 
-void applyOverrides(const RenderCommand& c, Scene& scene) {
+void applyOverrides(const RenderCommand& c, Scene& scene, const TexelLimit& limit) {
     if (c.width) scene.camera.width = *c.width;
     if (c.height) scene.camera.height = *c.height;
     if (c.spp) scene.settings.samplesPerPixel = *c.spp;
@@ -180,6 +199,7 @@ void applyOverrides(const RenderCommand& c, Scene& scene) {
         scene.background.kind = BackgroundKind::Constant;
         scene.background.colour = *c.background;
     }
+    if (!c.backgroundMap.empty()) loadSphericalBackground(scene, c.backgroundMap, limit);
     if (!c.lights.empty()) {
         scene.lights.clear();
         for (const glm::vec3& p : c.lights) scene.lights.push_back({.position = p, .colour = glm::vec3(1.0f)});

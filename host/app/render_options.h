@@ -10,6 +10,7 @@
 
 #include "gpu/vulkan_renderer.h"
 #include "scene/scene.h"
+#include "scene/texel_limit.h"
 
 namespace vitrum {
 
@@ -30,6 +31,7 @@ struct RenderCommand {
     std::optional<FresnelModel> fresnel;
     std::optional<TextureFilter> filter;
     std::optional<glm::vec3> from, at, up, background;
+    std::string backgroundMap;  // --background FILE: an equirectangular map in place of the scene's background
     std::vector<glm::vec3> lights;
     std::string camera;  // a glTF scene's camera by name
     bool instancing = true;  // repeated meshes stored once (SceneLoadOptions::instancing)
@@ -49,8 +51,9 @@ void checkOutputs(const RenderCommand& command);
 // texture or environment map of the scene.
 void checkOutputsSpareTheScenesImages(const RenderCommand& command, const Scene& scene);
 
-// The command's overrides of the scene's own settings, then the checks of the camera, the lights
-// and the image's size that a scene file's values pass too.
-void applyOverrides(const RenderCommand& command, Scene& scene);
+// The command's overrides of the scene's own settings (a background map read within `limit`),
+// then the checks of the camera, the lights and the image's size that a scene file's values pass
+// too.
+void applyOverrides(const RenderCommand& command, Scene& scene, const TexelLimit& limit = {});
 
 }  // namespace vitrum

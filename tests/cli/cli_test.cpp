@@ -335,6 +335,50 @@ TEST_F(Cli, StatsSayWhereTheCameraLies) {
 
 namespace {
 
+// --background FILE puts an equirectangular map behind any scene, a bare glTF's or OBJ's included
+// (glTF glass assets bring no environment): the image of the scene whose JSON names the same map
+// as its "spherical" background, bit for bit; the last --background wins; the map is an input, so
+// an output naming it is refused before anything is rendered, and leaves it as it was.
+TEST_F(Cli, BackgroundMapFromTheCommandLineIsTheScenesSphericalBackground) {
+    const std::string source = VITRUM_SOURCE_DIR;
+    const std::string sky = source + "/scenes/environment/sky.hdr";
+    const std::string scene = source + "/scenes/glass_set.json --width 64 --height 48";
+    auto bytes = [](const std::string& file) {
+        std::ifstream in(file, std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(in)), {});
+    };
+    ASSERT_EQ(vitrum("render " + scene + " -o " + path("json.pfm")).exitCode, 0);
+    const CommandRun mapped = vitrum("render " + scene + " --background 0,0,0 --background " + sky + " -o " + path("map.pfm"));
+    ASSERT_EQ(mapped.exitCode, 0) << mapped.output;
+    const CommandRun black = vitrum("render " + scene + " --background " + sky + " --background 0,0,0 -o " + path("black.pfm"));
+    ASSERT_EQ(black.exitCode, 0) << black.output;
+    EXPECT_GT(bytes(path("json.pfm")).size(), 64u * 48u * 12u);
+    EXPECT_TRUE(bytes(path("json.pfm")) == bytes(path("map.pfm"))) << "the map given on the command line differs";
+    EXPECT_GT(vitrum::diffImages(vitrum::readImage(path("json.pfm")), vitrum::readImage(path("black.pfm"))).shareOver005, 0.3);
+
+    // A bare glTF under the map: its automatic grey background is replaced.
+    const std::string gltf = source + "/scenes/meshes/glass_set.gltf --width 64 --height 48";
+    ASSERT_EQ(vitrum("render " + gltf + " -o " + path("bare.pfm")).exitCode, 0);
+    ASSERT_EQ(vitrum("render " + gltf + " --background " + sky + " -o " + path("bare_sky.pfm")).exitCode, 0);
+    EXPECT_GT(vitrum::diffImages(vitrum::readImage(path("bare.pfm")), vitrum::readImage(path("bare_sky.pfm"))).shareOver005,
+              0.3);
+
+    fs::copy_file(sky, path("sky.hdr"));
+    const std::string before = bytes(path("sky.hdr"));
+    const CommandRun overwrite = vitrum("render " + gltf + " --background " + path("sky.hdr") + " -o " + path("sky.hdr"));
+    EXPECT_EQ(overwrite.exitCode, 1);
+    EXPECT_NE(overwrite.output.find("it is the background map"), std::string::npos) << overwrite.output;
+    EXPECT_TRUE(bytes(path("sky.hdr")) == before);
+    const CommandRun twoNumbers = vitrum("render " + gltf + " --background 0.1,0.2 -o " + path("out.png"));
+    EXPECT_EQ(twoNumbers.exitCode, 1);
+    EXPECT_NE(twoNumbers.output.find("--background takes a colour R,G,B or an image file"), std::string::npos)
+        << twoNumbers.output;
+    const CommandRun missing = vitrum("render " + gltf + " --background " + path("nothere.exr") + " -o " + path("out.png"));
+    EXPECT_EQ(missing.exitCode, 1);
+    EXPECT_NE(missing.output.find("nothere.exr"), std::string::npos) << missing.output;
+    EXPECT_FALSE(fs::exists(path("out.png")));
+}
+
 TEST_F(Cli, NoSpecializeRendersTheSameImageWithTheGeneralKernel) {
     const std::string scene = std::string(VITRUM_SOURCE_DIR) + "/scenes/touching_cubes.json --width 48 --height 36";
     CommandRun specialized =

@@ -150,7 +150,8 @@ int fuzzRenderArguments(const std::uint8_t* data, std::size_t size) {
     for (std::string& piece : pieces) argv.push_back(piece.data());
     argv.push_back(nullptr);
     try {
-        const RenderCommand command = parseRenderCommand(int(pieces.size()), argv.data(), 2);
+        RenderCommand command = parseRenderCommand(int(pieces.size()), argv.data(), 2);
+        command.backgroundMap.clear();  // a file to read, not an option: fuzz_image reads images
         Scene scene;
         scene.materials.push_back(Material{});
         scene.objectNames = {"triangle"};
