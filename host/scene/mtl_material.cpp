@@ -27,9 +27,11 @@ void thinWalled(const MtlEntry& entry, const std::filesystem::path& mtlFile, Mat
     if (m.attenuation != glm::vec3(0.0f)) ignored += " Tf";
     if (m.priority != 0) ignored += " priority";
     if (m.abbe > 0.0f) ignored += " Vd";
+    if (entry.tint) ignored += " tint (a thin glass is tinted by Kd)";
     m.attenuation = glm::vec3(0.0f);
     m.priority = 0;
     m.abbe = 0.0f;
+    m.tint = glm::vec3(1.0f);
     if (!ignored.empty()) warn(material + " is thin-walled glass, which has no medium; ignored:" + ignored);
 }
 
@@ -99,6 +101,16 @@ Material materialFromMtl(const MtlEntry& entry, const std::filesystem::path& mtl
         else
             warn(mtlFile.string() + ": material \"" + entry.name + "\" has Vd " + std::to_string(*entry.vd) +
                  "; no dispersion");
+    }
+    if (entry.tint) {
+        // A glass's surface tint (render-model-decisions.md, "Glass tint"), sRGB as Kd; it passes
+        // light, so it lies within [0, 1].
+        const std::string material = mtlFile.string() + ": material \"" + entry.name + "\"";
+        if (m.model != MaterialModel::Glass)
+            warn(material + " has a tint but is not glass; tint ignored");
+        else if (glm::any(glm::lessThan(*entry.tint, glm::vec3(0.0f))) || glm::any(glm::greaterThan(*entry.tint, glm::vec3(1.0f))))
+            warn(material + " has a tint outside [0, 1]; kept within it");
+        if (m.model == MaterialModel::Glass) m.tint = decodeSrgb(glm::clamp(*entry.tint, 0.0f, 1.0f));
     }
     if (entry.thinWalled == 1) thinWalled(entry, mtlFile, m);
     if (entry.ni) {

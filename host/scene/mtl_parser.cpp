@@ -108,8 +108,8 @@ private:
             entries_.push_back(MtlEntry{.name = std::string(words[1]), .line = line_});
             return;
         }
-        static constexpr std::string_view kUsedKeys[] = {"Ka",    "Kd",     "Ks",     "Tf",       "Ns", "Ni",
-                                                         "illum", "shader", "map_Kd", "priority", "Vd", "thin_walled"};
+        static constexpr std::string_view kUsedKeys[] = {"Ka",     "Kd",     "Ks",       "Tf", "Ns",          "Ni",  "illum",
+                                                         "shader", "map_Kd", "priority", "Vd", "thin_walled", "tint"};
         if (std::find(std::begin(kUsedKeys), std::end(kUsedKeys), key) == std::end(kUsedKeys)) return;
         if (entries_.empty()) {
             warn(path_.string() + ":" + std::to_string(line_) + ": " + std::string(key) + " before any newmtl ignored");
@@ -124,6 +124,8 @@ private:
             m.ks = colour(key, words, rest);
         else if (key == "Tf")
             m.tf = colour(key, words, rest);
+        else if (key == "tint")
+            m.tint = colour(key, words, rest);
         else if (key == "Ns")
             m.ns = scalar(key, words, rest);
         else if (key == "Ni")

@@ -14,7 +14,7 @@ namespace vitrum {
 struct MtlEntry {
     std::string name;                         // after `newmtl`
     int line = 0;                             // of the `newmtl` line
-    std::optional<glm::vec3> ka, kd, ks, tf;  // as written: sRGB for Ka Kd Ks, linear mu for Tf
+    std::optional<glm::vec3> ka, kd, ks, tf, tint;  // as written: sRGB for Ka Kd Ks tint, linear mu for Tf
     std::optional<float> ns, ni, vd;
     std::optional<int> illum, shader, priority, thinWalled;
     int shaderLine = 0;

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "analysis/scene_features.h"
 #include "common/error.h"
 #include "image/srgb.h"
 #include "scene/json_lines.h"
@@ -521,6 +522,34 @@ TEST(SceneMtl, ThinWalledMakesAGlassThinGlass) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("bad.mtl:3: thin_walled expects 0 or 1"), std::string::npos) << e.what();
     }
+}
+
+// `tint r g b` (render-model-decisions.md, "Glass tint"): a glass's surface tint, sRGB as Kd,
+// white without it; outside [0, 1] it is kept within, with a warning. On another model it is
+// ignored with a warning, and a thin glass, tinted by Kd, drops it with its medium's keys.
+TEST(SceneMtl, TintTintsAGlassSurface) {
+    fs::path dir = tempDir();
+    write(dir / "t.mtl",
+          "newmtl sapphire\nshader 4\nNi 1.77\ntint 0.5 0.75 1\n"
+          "newmtl clear\nshader 4\n"
+          "newmtl grey\nshader 4\ntint 0.5\n"
+          "newmtl beyond\nshader 4\ntint 1.5 -1 0.5\n"
+          "newmtl pane\nshader 4\ntint 0.5 0.5 0.5\nthin_walled 1\n"
+          "newmtl plastic\nshader 3\ntint 0.5 0.5 0.5\n");
+    write(dir / "t.obj", "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl sapphire\nf 1 2 3\nusemtl clear\nf 1 2 3\n"
+                         "usemtl grey\nf 1 2 3\nusemtl beyond\nf 1 2 3\nusemtl pane\nf 1 2 3\nusemtl plastic\nf 1 2 3\n");
+    const int before = warningCount();
+    const Scene scene = loadScene(dir / "t.obj");
+    EXPECT_EQ(warningCount(), before + 3);  // beyond's range, pane's tint, plastic's tint
+    const float half = srgbToLinear(0.5f);
+    EXPECT_EQ(materialNamed(scene, "sapphire").tint, glm::vec3(half, srgbToLinear(0.75f), 1.0f));
+    EXPECT_EQ(materialNamed(scene, "clear").tint, glm::vec3(1.0f));
+    EXPECT_EQ(materialNamed(scene, "grey").tint, glm::vec3(half));
+    EXPECT_EQ(materialNamed(scene, "beyond").tint, glm::vec3(1.0f, 0.0f, half));
+    EXPECT_EQ(materialNamed(scene, "pane").model, MaterialModel::ThinGlass);
+    EXPECT_EQ(materialNamed(scene, "pane").tint, glm::vec3(1.0f));
+    EXPECT_EQ(materialNamed(scene, "plastic").tint, glm::vec3(1.0f));
+    EXPECT_TRUE(analyseScene(scene).glassTints);
 }
 
 TEST(SceneMtl, KsTypoReadsAsOneWithOneWarningPerFile) {

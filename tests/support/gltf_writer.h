@@ -135,7 +135,8 @@ inline nlohmann::json material(const MtlEntry& entry, const fs::path& mtlFile, c
     nlohmann::json out = {{"name", entry.name}};
     nlohmann::json& pbr = out["pbrMetallicRoughness"];
     if (m.model == MaterialModel::Glass) {
-        pbr = {{"baseColorFactor", {1.0, 1.0, 1.0, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.0}};
+        // The base colour of a volume is its surface's tint.
+        pbr = {{"baseColorFactor", rgba(m.tint)}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.0}};
         out["extensions"]["KHR_materials_transmission"] = {{"transmissionFactor", 1.0}};
         out["extensions"]["KHR_materials_ior"] = {{"ior", double(m.ior)}};
         // A volume of non-zero thickness: a closed mesh, not a thin wall. Beer-Lambert's mu is
