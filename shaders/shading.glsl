@@ -290,6 +290,7 @@ void scatter(GpuMaterial m) {
     uint count = mediaCount(st.ray);
     vec3 through = p;  // where a transmitted ray starts: beyond every surface of the interface
     // What the transmitted light takes on: a thin glass's Kd, a tinted glass's surfaces (below).
+    bool tinted = thin || (kGlassTints && glass);
     vec3 tint = thin ? diffuseColour(m) : vec3(1.0);
     if (usesMaterial(kMaterialGlass) && glass) {
         bool falseSurface = falseHit(media, count, st.hit.object, ieeeDot(d, facing) < 0.0);
@@ -317,12 +318,13 @@ void scatter(GpuMaterial m) {
     float cos2t = cosSquaredTransmitted(d, n, eta);
     float r = fresnelReflectance(glass || thin ? fresnelModel() : kFresnelSchlick, n1, n2, cosI, cos2t);
     if ((glass || thin) && !matched && cos2t < 0.0) counters.totalInternalReflections += 1u;
-    vec3 transmitted = kGlassTints && glass ? w * (1.0 - r) * tint : w * (1.0 - r);
-    if (thin) {  // a pane: its faces' reflections summed, the transmission tinted and undeviated
+    vec3 transmitted = w * (1.0 - r);
+    if (thin) {  // a pane: its faces' reflections summed, the transmission undeviated
         vec2 pane = thinPane(r);
-        transmitted = w * pane.y * tint;
+        transmitted = w * pane.y;
         r = pane.x;
     }
+    if (tinted) transmitted *= tint;
     vec3 transmittedOrigin = offsetRayOrigin(through, -facing);
     // Each child passes the depth and weight limits (or is counted).
     if ((glass || thin) && !matched && cos2t >= 0.0 && admitChild(depth + 1u, transmitted)) {
@@ -337,7 +339,7 @@ void scatter(GpuMaterial m) {
             counters.refractionRays += 1u;
         }
     }
-    PendingRay next = matched ? childRay(transmittedOrigin, d, thin || (kGlassTints && glass) ? w * tint : w, media, count, depth)
+    PendingRay next = matched ? childRay(transmittedOrigin, d, tinted ? w * tint : w, media, count, depth)
                               : childRay(offsetRayOrigin(p, facing), reflectDirection(d, n), mirror ? w * m.specular.xyz : w * r,
                                          st.ray.media, mediaCount(st.ray), depth + 1u);
     // An index-matched continuation is the same ray going on at its own depth, not a new branch:
