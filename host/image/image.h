@@ -17,6 +17,9 @@ struct Image {
     std::uint32_t width = 0;
     std::uint32_t height = 0;
     std::vector<glm::vec3> pixels;  // width * height, row-major, top row first
+    // The alpha channel (linear, 0 to 1) of a file that has one (PNG, WebP), as `pixels`; empty
+    // for an opaque image. Only textures read it (glTF's alphaMode MASK); writing ignores it.
+    std::vector<float> alpha;
 
     Image() = default;
     Image(std::uint32_t w, std::uint32_t h) : width(w), height(h), pixels(std::size_t(w) * h, glm::vec3(0.0f)) {}

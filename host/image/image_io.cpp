@@ -250,18 +250,25 @@ Image readSrgb(const fs::path& path, const FileBytes& file) {
     int w = 0;
     int h = 0;
     int n = 0;
+    // Grey or colour with alpha (stb's 2 and 4 channels): alpha is kept beside the colour.
+    const bool withAlpha = stbi_info_from_memory(file.data(), file.size(), &w, &h, &n) && (n == 2 || n == 4);
+    const int channels = withAlpha ? 4 : 3;
     if (stbi_is_16_bit_from_memory(file.data(), file.size())) {
-        stbi_us* data = stbi_load_16_from_memory(file.data(), file.size(), &w, &h, &n, 3);
+        stbi_us* data = stbi_load_16_from_memory(file.data(), file.size(), &w, &h, &n, channels);
         if (!data) throw inputError(path, 0, "cannot read image: " + stbReason());
         std::unique_ptr<stbi_us, void (*)(void*)> owned(data, stbi_image_free);
         requireDeclaredSize(path, file, w, h);
         Image image(static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h));
         for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-            for (int c = 0; c < 3; ++c) image.pixels[i][c] = srgbToLinear(float(data[i * 3 + c]) / 65535.0f);
+            for (int c = 0; c < 3; ++c) image.pixels[i][c] = srgbToLinear(float(data[i * channels + c]) / 65535.0f);
+        }
+        if (channels == 4) {
+            image.alpha.resize(image.pixels.size());
+            for (std::size_t i = 0; i < image.alpha.size(); ++i) image.alpha[i] = float(data[i * 4 + 3]) / 65535.0f;
         }
         return image;
     }
-    stbi_uc* data = stbi_load_from_memory(file.data(), file.size(), &w, &h, &n, 3);
+    stbi_uc* data = stbi_load_from_memory(file.data(), file.size(), &w, &h, &n, channels);
     if (!data) throw inputError(path, 0, "cannot read image: " + stbReason());
     std::unique_ptr<stbi_uc, void (*)(void*)> owned(data, stbi_image_free);
     requireDeclaredSize(path, file, w, h);
@@ -269,7 +276,11 @@ Image readSrgb(const fs::path& path, const FileBytes& file) {
     for (int i = 0; i < 256; ++i) table[i] = srgbToLinear(float(i) / 255.0f);
     Image image(static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h));
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-        for (int c = 0; c < 3; ++c) image.pixels[i][c] = table[data[i * 3 + c]];
+        for (int c = 0; c < 3; ++c) image.pixels[i][c] = table[data[i * channels + c]];
+    }
+    if (channels == 4) {
+        image.alpha.resize(image.pixels.size());
+        for (std::size_t i = 0; i < image.alpha.size(); ++i) image.alpha[i] = float(data[i * 4 + 3]) / 255.0f;
     }
     return image;
 }

@@ -23,8 +23,11 @@ Image readWebp(const std::filesystem::path& path, const std::vector<unsigned cha
     checkDeclaredSize(path, "image", features.width, features.height, bytes.size());
     limit.check(path, "image", std::uint64_t(features.width), std::uint64_t(features.height));
     int width = 0, height = 0;
-    const std::unique_ptr<std::uint8_t, void (*)(void*)> rgb(WebPDecodeRGB(bytes.data(), bytes.size(), &width, &height),
-                                                             WebPFree);
+    const int channels = features.has_alpha ? 4 : 3;
+    const std::unique_ptr<std::uint8_t, void (*)(void*)> rgb(
+        features.has_alpha ? WebPDecodeRGBA(bytes.data(), bytes.size(), &width, &height)
+                           : WebPDecodeRGB(bytes.data(), bytes.size(), &width, &height),
+        WebPFree);
     if (!rgb) throw inputError(path, 0, "cannot read WebP image: corrupt or truncated data");
     if (width != features.width || height != features.height)
         throw inputError(path, 0,
@@ -35,7 +38,11 @@ Image readWebp(const std::filesystem::path& path, const std::vector<unsigned cha
     for (int i = 0; i < 256; ++i) table[i] = srgbToLinear(float(i) / 255.0f);
     Image image(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) image.pixels[i][c] = table[rgb.get()[3 * i + std::size_t(c)]];
+        for (int c = 0; c < 3; ++c) image.pixels[i][c] = table[rgb.get()[std::size_t(channels) * i + std::size_t(c)]];
+    if (channels == 4) {
+        image.alpha.resize(image.pixels.size());
+        for (std::size_t i = 0; i < image.alpha.size(); ++i) image.alpha[i] = float(rgb.get()[4 * i + 3]) / 255.0f;
+    }
     return image;
 }
 

@@ -14,7 +14,9 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
 #include <webp/encode.h>
+#include <zlib.h>
 
 #include "common/error.h"
 #include "image/image.h"
@@ -93,6 +95,66 @@ TEST_F(ImageIoTest, LosslessWebpReadsAsItsSrgbValues) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("cut.webp: cannot read WebP image"), std::string::npos) << e.what();
     }
+}
+
+// The alpha channel (glTF's alphaMode MASK reads it): an RGBA or grey-and-alpha PNG (8 or 16
+// bits) and an RGBA WebP keep it, linear (a / 255, a / 65535), beside colours decoded as without
+// it; an image without alpha has none. The files are written by stb_image_write and libwebp.
+TEST_F(ImageIoTest, AlphaIsReadBesideTheColourWhereTheFileHasIt) {
+    auto png = [&](const std::string& name, int channels, const std::vector<std::uint8_t>& values) {
+        const fs::path path = dir_ / name;
+        EXPECT_NE(stbi_write_png(path.string().c_str(), 2, 1, channels, values.data(), 2 * channels), 0);
+        return readImage(path);
+    };
+    const Image rgba = png("rgba.png", 4, {10, 20, 30, 0, 200, 150, 100, 77});
+    EXPECT_EQ(rgba.pixels[1],
+              glm::vec3(srgbToLinear(200 / 255.0f), srgbToLinear(150 / 255.0f), srgbToLinear(100 / 255.0f)));
+    EXPECT_EQ(rgba.alpha, (std::vector<float>{0.0f, 77 / 255.0f}));
+    const Image greyAlpha = png("grey_alpha.png", 2, {40, 255, 90, 128});
+    EXPECT_EQ(greyAlpha.pixels[0], glm::vec3(srgbToLinear(40 / 255.0f)));
+    EXPECT_EQ(greyAlpha.alpha, (std::vector<float>{1.0f, 128 / 255.0f}));
+    EXPECT_TRUE(png("rgb.png", 3, {1, 2, 3, 4, 5, 6}).alpha.empty());
+    EXPECT_TRUE(png("grey.png", 1, {1, 2}).alpha.empty());
+
+    // A 16-bit RGBA PNG, written here byte by byte (stb writes 8 bits): big-endian samples.
+    const std::uint16_t samples[4] = {0x1234, 0xFFFF, 0x0000, 0x8000};
+    std::vector<unsigned char> raw = {0};  // filter type 0, then one pixel
+    for (std::uint16_t v : samples) {
+        raw.push_back(std::uint8_t(v >> 8));
+        raw.push_back(std::uint8_t(v & 0xFF));
+    }
+    std::vector<unsigned char> compressed(compressBound(uLong(raw.size())));
+    uLongf compressedSize = uLongf(compressed.size());
+    ASSERT_EQ(compress(compressed.data(), &compressedSize, raw.data(), uLong(raw.size())), Z_OK);
+    compressed.resize(compressedSize);
+    std::string file("\x89PNG\r\n\x1a\n", 8);
+    auto chunk = [&](const char* type, const std::vector<unsigned char>& data) {
+        auto u32 = [&](std::uint32_t v) {
+            for (int s = 24; s >= 0; s -= 8) file += char((v >> s) & 0xFF);
+        };
+        u32(std::uint32_t(data.size()));
+        std::string body(type, 4);
+        body.append(data.begin(), data.end());
+        file += body;
+        u32(std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size()))));
+    };
+    chunk("IHDR", {0, 0, 0, 1, 0, 0, 0, 1, 16, 6, 0, 0, 0});  // 1 x 1, 16 bits, RGBA
+    chunk("IDAT", compressed);
+    chunk("IEND", {});
+    std::ofstream(dir_ / "deep.png", std::ios::binary) << file;
+    const Image deep = readImage(dir_ / "deep.png");
+    EXPECT_EQ(deep.pixels[0].x, srgbToLinear(0x1234 / 65535.0f));
+    EXPECT_EQ(deep.alpha, std::vector<float>{0x8000 / 65535.0f});
+
+    const std::uint8_t webpPixels[8] = {255, 0, 0, 255, 0, 0, 255, 3};
+    std::uint8_t* encoded = nullptr;
+    const std::size_t size = WebPEncodeLosslessRGBA(webpPixels, 2, 1, 8, &encoded);
+    ASSERT_GT(size, 0u);
+    std::ofstream(dir_ / "alpha.webp", std::ios::binary) << std::string(reinterpret_cast<const char*>(encoded), size);
+    WebPFree(encoded);
+    const Image webp = readImage(dir_ / "alpha.webp");
+    EXPECT_EQ(webp.pixels[1], glm::vec3(0.0f, 0.0f, 1.0f));
+    EXPECT_EQ(webp.alpha, (std::vector<float>{1.0f, 3 / 255.0f}));
 }
 
 TEST_F(ImageIoTest, PngRoundTripWithinQuantisation) {
