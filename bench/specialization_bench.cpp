@@ -141,17 +141,17 @@ int run(int argc, char** argv) {
              << k.pendingRayCapacity << " | " << general.stats.stateBytesPerPixel << " -> "
              << special.stats.stateBytesPerPixel << " | "
              << bench::fixed(double(general.stats.stateBytesPerPixel - special.stats.stateBytesPerPixel) * tilePixels /
-                          (1024.0 * 1024.0), 1)
+                                 (1024.0 * 1024.0),
+                             1)
              << " | " << general.stats.touchingProbes - special.stats.touchingProbes << " | "
              << (k.shadowRays ? "" : "shadow rays, ") << (k.absorption ? "" : "absorption, ")
              << (k.touchingProbe ? "" : "touching surfaces, ") << (k.opaqueContact ? "" : "glass on opaque surfaces, ")
-             << (k.coincidentOpaque ? "" : "coincident opaque surfaces, ")
-             << (k.textures ? "" : "textures, ")
+             << (k.coincidentOpaque ? "" : "coincident opaque surfaces, ") << (k.textures ? "" : "textures, ")
              << (k.materialModels >> std::uint32_t(MaterialModel::Glass) & 1u ? "" : "glass, ")
              << (k.materialModels >> std::uint32_t(MaterialModel::ThinGlass) & 1u ? "" : "thin glass, ")
              << (k.mediumPriorities ? "" : "priorities, ") << (k.dispersion ? "" : "dispersion, ")
-             << (k.glassTints ? "" : "glass tints, ") << (k.instancing ? "" : "instancing, ")
-             << "other backgrounds |\n";
+             << (k.glassTints ? "" : "glass tints, ") << (k.cutouts ? "" : "cut-outs, ")
+             << (k.instancing ? "" : "instancing, ") << "other backgrounds |\n";
     }
     fs::remove_all(cacheRoot);
 

@@ -1,9 +1,10 @@
 // A resumable BVH traversal over the flattened nodes of shared/gpu_types.h: its state lives in
 // `st` (trace_state.glsl) and its stack in gStack, so that a dispatch can stop after any step and
 // the next one resume it (suspend.glsl). The includer provides nodeTexels and vertexTexels
-// (geometry_texels.glsl), `params` and the constants kShadowRays, kTouchingProbe, kOpaqueContact,
-// kCoincidentOpaque, kInstancing, kResumable and kFullSubgroups: trace.comp's (bindings.glsl,
-// specialization.glsl) or a benchmark's own (bench/trace_only).
+// (geometry_texels.glsl), `params`, the constants kShadowRays, kTouchingProbe, kOpaqueContact,
+// kCoincidentOpaque, kInstancing, kCutouts, kResumable and kFullSubgroups, and cutAway:
+// trace.comp's (bindings.glsl, specialization.glsl, cutout.glsl) or a benchmark's own
+// (bench/trace_only).
 #ifndef VITRUM_BVH_GLSL
 #define VITRUM_BVH_GLSL
 
@@ -268,8 +269,12 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
             cursor += 1u;
             TriangleVertices tri = loadTriangle(triangle);
             vec3 hit = intersectTriangle(tri, triangleRay);
-            if (hit.x > tMin && hit.x < tMax + reach) {
-                bool glass = floatBitsToUint(tri.v2.w) == kTriangleGlass;
+            bool candidate = hit.x > tMin && hit.x < tMax + reach;
+            // A hit in a cut-out part is no hit of any kind (cutout.glsl).
+            uint mark = floatBitsToUint(tri.v2.w);
+            if (kCutouts && candidate && (mark & kTriangleCutout) != 0u) candidate = !cutAway(triangle, mark, hit.yz);
+            if (candidate) {
+                bool glass = mark == kTriangleGlass;
                 if (collectTouching && glass) {
                     bool entering = ieeeDot(direction, windingNormal(tri)) < 0.0;
                     addTouchingCandidate(touchingObjects, touchingT, floatBitsToUint(tri.v1.w) + firstObject, entering, hit.x,

@@ -7,6 +7,7 @@
 #include "counters.glsl"
 #include "pending_rays.glsl"
 #include "ray_sharing.glsl"
+#include "cutout.glsl"  // cutAway, which bvh.glsl calls
 #include "bvh.glsl"
 #include "camera.glsl"
 #include "ray_offset.glsl"

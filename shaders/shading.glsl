@@ -8,6 +8,7 @@
 #include "pending_rays.glsl"
 #include "media.glsl"
 #include "ray_tree.glsl"
+#include "cutout.glsl"  // cutAway, which bvh.glsl calls
 #include "bvh.glsl"
 #include "optics.glsl"
 #include "ray_offset.glsl"

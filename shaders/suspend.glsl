@@ -12,6 +12,7 @@
 #include "bindings.glsl"
 #include "specialization.glsl"
 #include "trace_state.glsl"
+#include "cutout.glsl"  // cutAway, which bvh.glsl calls
 #include "bvh.glsl"
 #include "ray_tree.glsl"  // startPixel
 

@@ -18,6 +18,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "schedule.glsl"
 #include "trace_state.glsl"
 #include "statistics.glsl"
+#include "cutout.glsl"  // cutAway, which bvh.glsl calls
 #include "bvh.glsl"
 #include "pending_rays.glsl"
 #include "ray_sharing.glsl"

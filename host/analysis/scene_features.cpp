@@ -207,6 +207,7 @@ SceneFeatures analyseScene(const Scene& scene, std::size_t flatAnalysisTriangles
     std::set<int> glassPriorities;
     for (std::uint32_t index : used) {
         const Material& m = scene.materials[index];
+        if (hasCutouts(m)) f.cutouts = true;
         switch (m.model) {
             case MaterialModel::Glass:
                 f.glass = f.reflection = true;
@@ -322,11 +323,13 @@ std::vector<std::string> SceneFeatures::describe() const {
     return {
         "materials: " + (models.empty() ? std::string("none") : models),
         std::string("glass (refraction, medium stack): ") + yesNo(glass) + ", " + std::to_string(glassObjects) +
-            " objects" + (openGlassObjects ? ", " + std::to_string(openGlassObjects) + " of them open or badly wound" : ""),
+            " objects" +
+            (openGlassObjects ? ", " + std::to_string(openGlassObjects) + " of them open or badly wound" : ""),
         std::string("absorbing media (Beer-Lambert): ") + yesNo(absorbingMedia),
         std::string("overlapping media by priority: ") + yesNo(mediumPriorities),
         std::string("dispersion (wavelength samples): ") + yesNo(dispersion),
         std::string("tinted glass surfaces: ") + yesNo(glassTints),
+        std::string("cut-out surfaces (alpha masks): ") + yesNo(cutouts),
         std::string("touching glass surfaces possible: ") + yesNo(touchingMediaPossible),
         std::string("glass resting on opaque surfaces possible: ") + yesNo(opaqueContactPossible),
         std::string("coincident opaque surfaces of two objects possible: ") + yesNo(coincidentOpaquePossible),
@@ -350,6 +353,7 @@ nlohmann::json toJson(const SceneFeatures& f) {
         {"medium_priorities", f.mediumPriorities},
         {"dispersion", f.dispersion},
         {"glass_tints", f.glassTints},
+        {"cutouts", f.cutouts},
         {"touching_media_possible", f.touchingMediaPossible},
         {"opaque_contact_possible", f.opaqueContactPossible},
         {"coincident_opaque_possible", f.coincidentOpaquePossible},

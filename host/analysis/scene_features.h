@@ -34,6 +34,9 @@ struct SceneFeatures {
     // Some glass tints the light crossing its surface (Material::tint, glTF's base colour of a
     // volume; render-model-decisions.md, "Glass tint").
     bool glassTints = false;
+    // Some surface has cut-out parts (Material::cutout, glTF's alphaMode MASK): both traversals
+    // test its hits against its texture (render-model-decisions.md, "Cut-out surfaces").
+    bool cutouts = false;
     // Two triangles of different glass objects that may lie within twice the touching distance
     // of each other (analysis/glass_proximity.h): only then can a touching probe find anything, so
     // otherwise neither backend probes. Nested objects apart from each other need no probe.

@@ -30,12 +30,26 @@ struct TriangleHit {
     std::uint32_t instance = gpu::kNoInstance;  // the copy of its mesh (Bvh::instances), or none
 };
 
+// Where a triangle is cut away (Material::cutout): a triangle whose vertices are marked
+// gpu::kTriangleCutout | texture (gpu_types.h, "Triangles") is asked about at each of its hits,
+// before the hit counts as one of any kind; where it is cut away the ray passes on, as the
+// kernel's cutAway (shaders/cutout.glsl) lets it. `triangle` is in BVH order, (u, v) the hit's
+// barycentrics of v1 and v2.
+class Cutouts {
+public:
+    virtual ~Cutouts() = default;
+    virtual bool cutAway(std::uint32_t triangle, std::uint32_t mark, float u, float v) const = 0;
+    virtual bool cutAway(std::uint32_t triangle, std::uint32_t mark, double u, double v) const = 0;
+};
+
 // What a traversal walks: the flattened nodes (bvh.h), the triangles in BVH order and, for a
-// scene with instances, the instances the top-level leaves name (Bvh::instances).
+// scene with instances, the instances the top-level leaves name (Bvh::instances); where triangles
+// are marked as cut out, what decides where (null: every hit counts).
 struct TraversalInput {
     std::span<const gpu::BvhNode> nodes;
     std::span<const gpu::TriangleVertices> triangles;
     std::span<const gpu::GpuInstance> instances = {};
+    const Cutouts* cutouts = nullptr;
 };
 
 struct TraversalCounters {

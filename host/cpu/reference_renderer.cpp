@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -59,6 +60,46 @@ struct TraceCounters : TraceCounts {
     }
 };
 
+// The triangles in BVH order as both traversals read them, with the mark of those whose material
+// has cut-out parts (gpu_types.h, "Triangles").
+std::vector<gpu::TriangleVertices> markedVertices(const Scene& scene, const Bvh& bvh) {
+    std::vector<gpu::TriangleVertices> vertices = packTriangleVertices(bvh, scene.triangles);
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+        const Material& m = scene.materials[scene.triangles[bvh.triangleOrder[i]].material];
+        if (hasCutouts(m)) vertices[i].v2.w = std::bit_cast<float>(gpu::kTriangleCutout | std::uint32_t(m.cutout));
+    }
+    return vertices;
+}
+
+// Where a marked triangle is cut away (Material::cutout): its texture at the hit's uv, read as
+// map_Kd is (diffuseColour), below 1.
+class ReferenceCutouts final : public Cutouts {
+public:
+    ReferenceCutouts(const Scene& scene, const Bvh& bvh) : scene_(scene), bvh_(bvh) {}
+    bool cutAway(std::uint32_t triangle, std::uint32_t mark, float u, float v) const override {
+        return cut<float>(triangle, mark, u, v);
+    }
+    bool cutAway(std::uint32_t triangle, std::uint32_t mark, double u, double v) const override {
+        return cut<double>(triangle, mark, u, v);
+    }
+
+private:
+    template <class Real>
+    bool cut(std::uint32_t triangle, std::uint32_t mark, Real u, Real v) const {
+        const Triangle& tri = scene_.triangles[bvh_.triangleOrder[triangle]];
+        const Real w0 = Real(1) - u - v;
+        const glm::vec<2, Real> uv =
+            w0 * glm::vec<2, Real>(tri.uv[0]) + u * glm::vec<2, Real>(tri.uv[1]) + v * glm::vec<2, Real>(tri.uv[2]);
+        const Texture& texture = scene_.textures[mark & ~gpu::kTriangleCutout];
+        return sampling::sampleTexture<Real>(texture, uv.x, Real(1) - uv.y, scene_.settings.filter,
+                                             sampling::Address::Wrap, sampling::Address::Wrap)
+                   .x < Real(1);
+    }
+
+    const Scene& scene_;
+    const Bvh& bvh_;
+};
+
 template <class Real>
 class ReferenceTracer {
 public:
@@ -66,11 +107,14 @@ public:
     using Color = glm::vec<3, Real>;
     using MediumStack = std::vector<std::uint32_t>;  // objects the ray is inside, innermost last
 
-    ReferenceTracer(const Scene& scene, const Bvh& bvh, const SceneFeatures& features, const RayIntersector* intersector)
+    ReferenceTracer(const Scene& scene, const Bvh& bvh, const SceneFeatures& features,
+                    const RayIntersector* intersector)
         : scene_(scene),
           bvh_(bvh),
           intersector_(intersector),
-          vertices_(packTriangleVertices(bvh, scene.triangles)),
+          vertices_(markedVertices(scene, bvh)),
+          cutouts_(scene, bvh),
+          anyCutouts_(features.cutouts),
           mediumMaterials_(objectMediumMaterials(scene)),
           cameraMedia_(features.cameraMedia),
           cameraMediaBehind_(features.cameraMediaBehind),
@@ -85,6 +129,8 @@ public:
         // Another traversal knows the triangles, not vitrum's instances (RayIntersector).
         if (intersector_ && !bvh.instances.empty())
             throw std::invalid_argument("a RayIntersector traces scenes without instances only");
+        if (intersector_ && features.cutouts)
+            throw std::invalid_argument("a RayIntersector traces scenes without cut-out surfaces only");
         // Each object's medium's Cauchy B (0 without dispersion), in float as the GPU gets it;
         // the wavelength samples only where some medium disperses.
         for (std::uint32_t material : mediumMaterials_) {
@@ -544,7 +590,9 @@ private:
             if (intersector_) return intersector_->all(ray, hits);
         traceAll<Real>(traversalInput(), ray, hits, &counters.traversal);
     }
-    TraversalInput traversalInput() const { return {bvh_.nodes, vertices_, bvh_.instances}; }
+    TraversalInput traversalInput() const {
+        return {bvh_.nodes, vertices_, bvh_.instances, anyCutouts_ ? &cutouts_ : nullptr};
+    }
 
     // The hit triangle's normal as its corners wind (not unit length), in the world: a ray along
     // d meets the triangle from the front where dot(d, n) < 0. The kernels' windingNormal
@@ -614,6 +662,8 @@ private:
     const Bvh& bvh_;
     const RayIntersector* intersector_;  // null: the BVH's nodes
     std::vector<gpu::TriangleVertices> vertices_;
+    ReferenceCutouts cutouts_;
+    bool anyCutouts_;
     std::vector<std::uint32_t> mediumMaterials_;
     std::vector<float> mediumDispersion_;          // an object's medium's Cauchy B, 0 without dispersion
     std::vector<WavelengthSample> samples_;        // empty where nothing disperses

@@ -30,7 +30,8 @@ struct TracedRay {
 // Where the reference finds what a ray hits, if not in vitrum's BVH: another traversal of the same
 // triangles, for a benchmark (bench/embree_renderer.cpp). Rays are float; hits name triangles by
 // their index in the BVH's order (Bvh::triangleOrder), as traceClosest's do. Scenes without
-// instances only (Scene::instances): rendering refuses the others.
+// instances (Scene::instances) or cut-out surfaces (Material::cutout) only: rendering refuses the
+// others.
 class RayIntersector {
 public:
     virtual ~RayIntersector() = default;

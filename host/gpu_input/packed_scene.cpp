@@ -18,12 +18,17 @@ namespace {
 float bits(std::uint32_t value) { return std::bit_cast<float>(value); }
 }  // namespace
 
+std::uint32_t triangleMark(const Material& m) {
+    if (m.model == MaterialModel::Glass) return gpu::kTriangleGlass;
+    return hasCutouts(m) ? gpu::kTriangleCutout | std::uint32_t(m.cutout) : 0u;
+}
+
 void packVertices(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleVertices> into) {
     parallelFor(into.size(), [&](std::size_t begin, std::size_t end) {
         packTriangleVertices(bvh, scene.triangles, into.subspan(begin, end - begin), begin);
         for (std::size_t i = begin; i < end; ++i) {
             const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
-            if (scene.materials[t.material].model == MaterialModel::Glass) into[i].v2.w = bits(gpu::kTriangleGlass);
+            into[i].v2.w = bits(triangleMark(scene.materials[t.material]));
         }
     });
 }

@@ -67,7 +67,12 @@ private:
     std::array<std::uint32_t, kRecent> recent_;
 };
 
-bool textured(const Scene& scene, const Triangle& t) { return scene.materials[t.material].diffuseTexture >= 0; }
+// Whether texture lookups read the triangle's uvs: its material's map_Kd, or its cut-outs in the
+// traversal.
+bool textured(const Scene& scene, const Triangle& t) {
+    const Material& m = scene.materials[t.material];
+    return m.diffuseTexture >= 0 || hasCutouts(m);
+}
 
 }  // namespace
 

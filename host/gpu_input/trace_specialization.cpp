@@ -28,6 +28,7 @@ TraceSpecialization TraceSpecialization::forScene(const Scene& scene, const Scen
     s.mediumPriorities = f.mediumPriorities;
     s.dispersion = f.dispersion;
     s.glassTints = f.glassTints;
+    s.cutouts = f.cutouts;
     s.instancing = !scene.instances.empty();
     s.textures = f.textures;
     s.backgroundKind = std::uint32_t(f.background);
@@ -60,6 +61,7 @@ TraceKernelConstants TraceSpecialization::constants() const {
     c[gpu::kConstantDispersion] = dispersion ? 1u : 0u;
     c[gpu::kConstantInstancing] = instancing ? 1u : 0u;
     c[gpu::kConstantGlassTints] = glassTints ? 1u : 0u;
+    c[gpu::kConstantCutouts] = cutouts ? 1u : 0u;
     return c;
 }
 
@@ -93,6 +95,7 @@ std::vector<std::string> TraceSpecialization::describe() const {
         std::string("overlapping media by priority: ") + onOff(mediumPriorities),
         std::string("dispersion: ") + onOff(dispersion),
         std::string("glass tints: ") + onOff(glassTints),
+        std::string("cut-out surfaces: ") + onOff(cutouts),
         std::string("instancing: ") + onOff(instancing),
         std::string("textures: ") + onOff(textures),
         "background: " + kindName(backgroundKind, backgroundKindName),
@@ -116,6 +119,7 @@ nlohmann::json toJson(const TraceSpecialization& s) {
         {"medium_priorities", s.mediumPriorities},
         {"dispersion", s.dispersion},
         {"glass_tints", s.glassTints},
+        {"cutouts", s.cutouts},
         {"instancing", s.instancing},
         {"textures", s.textures},
         {"background", kindName(s.backgroundKind, backgroundKindName)},

@@ -118,6 +118,9 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
     std::vector<std::string> ignored;
     Material m;
     m.name = name;
+    // Of KHR_materials_pbrSpecularGlossiness: its diffuse texture and factor's alpha, which
+    // replace the base colour's.
+    std::optional<std::pair<tinygltf::TextureInfo, double>> sgColour;
     const auto& pbr = g.pbrMetallicRoughness;
     const glm::vec3 base =
         pbr.baseColorFactor.size() >= 3 ? glm::vec3(glm::make_vec3(pbr.baseColorFactor.data())) : glm::vec3(1.0f);
@@ -181,7 +184,7 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
             ignored.push_back("baseColorTexture (a glass volume is tinted by its baseColorFactor alone)");
         if (extension("KHR_materials_pbrSpecularGlossiness")) ignored.push_back("KHR_materials_pbrSpecularGlossiness");
     } else if (const tinygltf::Value* specularGlossiness = extension("KHR_materials_pbrSpecularGlossiness")) {
-        specularGlossinessMaterial(*specularGlossiness, index, quoted, m, ignored);
+        sgColour = specularGlossinessMaterial(*specularGlossiness, index, quoted, m, ignored);
     } else if (pbr.metallicFactor >= 0.5) {
         m.model = MaterialModel::Mirror;
         m.specular = base;
@@ -230,7 +233,18 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
         (g.emissiveFactor.size() == 3 &&
          (g.emissiveFactor[0] > 0 || g.emissiveFactor[1] > 0 || g.emissiveFactor[2] > 0)))
         ignored.push_back("emission");
-    if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty()) ignored.push_back("alphaMode " + g.alphaMode);
+    if (g.alphaMode == "MASK") {
+        if (m.model == MaterialModel::Glass)
+            ignored.push_back("alphaMode MASK (a glass volume's surface is closed: it bounds its medium)");
+        else if (sgColour)
+            m.cutout = cutoutTexture(sgColour->first, sgColour->second, g.alphaCutoff, index, quoted, ignored);
+        else
+            m.cutout =
+                cutoutTexture(pbr.baseColorTexture, pbr.baseColorFactor.size() >= 4 ? pbr.baseColorFactor[3] : 1.0,
+                              g.alphaCutoff, index, quoted, ignored);
+    } else if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty()) {
+        ignored.push_back("alphaMode " + g.alphaMode);
+    }
     for (const auto& [key, value] : g.extensions)
         if (!isReadGltfExtension(key)) ignored.push_back(key);
     if (!ignored.empty()) {
@@ -246,8 +260,10 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
 // diffuseTexture), Ks = specularFactor (the reflectance at normal incidence, the highlight's
 // peak) and Ns from roughness = 1 - glossinessFactor as the metallic-roughness mapping takes it;
 // Lambert where specularFactor is 0 (no specular layer).
-void GltfMaterials::specularGlossinessMaterial(const tinygltf::Value& sg, int index, const std::string& quoted,
-                                               Material& m, std::vector<std::string>& ignored) {
+std::pair<tinygltf::TextureInfo, double> GltfMaterials::specularGlossinessMaterial(const tinygltf::Value& sg, int index,
+                                                                                   const std::string& quoted,
+                                                                                   Material& m,
+                                                                                   std::vector<std::string>& ignored) {
     auto factor = [&](const char* key, int count, glm::vec4 fallback) {
         const tinygltf::Value& v = sg.Get(key);
         if (!sg.Has(key)) return fallback;
@@ -262,7 +278,8 @@ void GltfMaterials::specularGlossinessMaterial(const tinygltf::Value& sg, int in
         }
         return out;
     };
-    const glm::vec3 diffuse(factor("diffuseFactor", 4, glm::vec4(1.0f)));
+    const glm::vec4 diffuseFactor = factor("diffuseFactor", 4, glm::vec4(1.0f));
+    const glm::vec3 diffuse(diffuseFactor);
     const glm::vec3 specular(factor("specularFactor", 3, glm::vec4(1.0f)));
     const double glossiness = std::clamp(
         extensionNumber(sg, "KHR_materials_pbrSpecularGlossiness", "glossinessFactor", 1.0, quoted), 0.0, 1.0);
@@ -275,9 +292,9 @@ void GltfMaterials::specularGlossinessMaterial(const tinygltf::Value& sg, int in
         const double roughness = 1.0 - glossiness, alpha = roughness * roughness;
         m.shininess = alpha > 0.0 ? float(std::clamp(2.0 / (alpha * alpha) - 2.0, 1.0, 10000.0)) : 10000.0f;
     }
+    tinygltf::TextureInfo info;  // index -1: none
     if (sg.Has("diffuseTexture")) {
         const tinygltf::Value& t = sg.Get("diffuseTexture");
-        tinygltf::TextureInfo info;
         info.index = t.Has("index") && t.Get("index").IsNumber() ? t.Get("index").GetNumberAsInt() : -1;
         info.texCoord = t.Has("texCoord") && t.Get("texCoord").IsNumber() ? t.Get("texCoord").GetNumberAsInt() : 0;
         if (t.Has("extensions") && t.Get("extensions").IsObject())
@@ -286,14 +303,16 @@ void GltfMaterials::specularGlossinessMaterial(const tinygltf::Value& sg, int in
         m.diffuseTexture = baseColorTexture(info, diffuse, index, quoted, ignored);
     }
     if (sg.Has("specularGlossinessTexture")) ignored.push_back("specularGlossinessTexture");
+    return {info, diffuseFactor.w};
 }
 
-// The render model's opaque diffuse colour is the texel alone (Kd or map_Kd): a factor other
-// than white is multiplied into a copy of the image, one per image and factor.
-// KHR_texture_transform moves its coordinates (uvTransforms_, applied as the material's
-// triangles are made).
-int GltfMaterials::baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3 factor, int material,
-                                    const std::string& quoted, std::vector<std::string>& ignored) {
+// The image a material's base colour texture reads (-1 where it has none it can read, with a
+// warning), its KHR_texture_transform kept for the material's triangles (uvTransforms_). Once a
+// material: its colour and its cut-outs read the same texture.
+int GltfMaterials::baseColorSource(const tinygltf::TextureInfo& info, int material, const std::string& quoted,
+                                   std::vector<std::string>& ignored) {
+    if (info.index < 0) return -1;
+    if (auto found = sources_.find(material); found != sources_.end()) return found->second;
     int texCoord = info.texCoord;
     for (const auto& [key, value] : info.extensions) {
         if (key != "KHR_texture_transform") {
@@ -319,15 +338,23 @@ int GltfMaterials::baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3
     }
     if (source < 0 || std::size_t(source) >= model_.images.size()) {
         warnAbout(quoted + ": its texture has no image it can read; using baseColorFactor");
-        return -1;
+        source = -1;
     }
-    const auto key = std::make_tuple(source, factor.x, factor.y, factor.z);
-    if (auto found = textures_.find(key); found != textures_.end()) return found->second;
+    return sources_[material] = source;
+}
+
+// What messages call the file's images[source]: its file, or its place in the glTF.
+fs::path GltfMaterials::imageName(int source) const {
     const tinygltf::Image& image = model_.images[std::size_t(source)];
-    const fs::path name = image.uri.empty() || image.uri.starts_with("data:")
-                              ? fs::path(file_.string() + ": image " + std::to_string(source))
-                              : file_.parent_path() / uriPath(image.uri);
-    int index = -1;
+    return image.uri.empty() || image.uri.starts_with("data:")
+               ? fs::path(file_.string() + ": image " + std::to_string(source))
+               : file_.parent_path() / uriPath(image.uri);
+}
+
+// The file's images[source], decoded within what the device leaves for textures.
+Image GltfMaterials::decodeSource(int source, const std::string& quoted) {
+    const tinygltf::Image& image = model_.images[std::size_t(source)];
+    const fs::path name = imageName(source);
     try {
         // tinygltf 2.7 decodes the data URIs of PNG, JPEG, BMP and GIF only: an image/webp one
         // comes as its uri.
@@ -337,12 +364,9 @@ int GltfMaterials::baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3
             if (payload != std::string::npos) dataUri = base64Bytes(std::string_view(image.uri).substr(payload + 8));
             if (!dataUri) throw inputError(name, 0, "a data URI that is not base64");
         }
-        Image decoded = image.as_is ? decodeImage(name, image.image, texelLimit_.leftAfter(scene_))
-                        : dataUri   ? decodeImage(name, std::move(*dataUri), texelLimit_.leftAfter(scene_))
-                                    : readImage(name, texelLimit_.leftAfter(scene_));
-        for (glm::vec3& texel : decoded.pixels) texel *= factor;
-        index = int(scene_.textures.size());
-        scene_.textures.push_back(Texture{name, int(decoded.width), int(decoded.height), std::move(decoded.pixels)});
+        return image.as_is ? decodeImage(name, image.image, texelLimit_.leftAfter(scene_))
+               : dataUri   ? decodeImage(name, std::move(*dataUri), texelLimit_.leftAfter(scene_))
+                           : readImage(name, texelLimit_.leftAfter(scene_));
     } catch (const ImageTooLarge& e) {
         fail(quoted + ": baseColorTexture " + e.what());
     } catch (const InputError& e) {
@@ -350,7 +374,52 @@ int GltfMaterials::baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3
         // set rendered without its labels is not what its author exported (issue 50).
         fail(quoted + ": its baseColorTexture's image cannot be read: " + e.what());
     }
+}
+
+// The render model's opaque diffuse colour is the texel alone (Kd or map_Kd): a factor other
+// than white is multiplied into a copy of the image, one per image and factor.
+int GltfMaterials::baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3 factor, int material,
+                                    const std::string& quoted, std::vector<std::string>& ignored) {
+    const int source = baseColorSource(info, material, quoted, ignored);
+    if (source < 0) return -1;
+    const auto key = std::make_tuple(source, factor.x, factor.y, factor.z);
+    if (auto found = textures_.find(key); found != textures_.end()) return found->second;
+    Image decoded = decodeSource(source, quoted);
+    for (glm::vec3& texel : decoded.pixels) texel *= factor;
+    const int index = int(scene_.textures.size());
+    scene_.textures.push_back(
+        Texture{imageName(source), int(decoded.width), int(decoded.height), std::move(decoded.pixels)});
     return textures_[key] = index;
+}
+
+// alphaMode MASK (glTF 2.0, "Alpha Coverage"): the surface is not there where the base colour's
+// alpha (the texture's times the factor's) is below alphaCutoff. Material::cutout holds alpha
+// over the cutoff, per texel of the image, or one texel where the image has no alpha channel;
+// none where nothing is cut.
+int GltfMaterials::cutoutTexture(const tinygltf::TextureInfo& info, double alphaFactor, double alphaCutoff,
+                                 int material, const std::string& quoted, std::vector<std::string>& ignored) {
+    if (!(alphaCutoff > 0.0)) return -1;  // alpha is never below 0
+    const double scale = std::clamp(alphaFactor, 0.0, 1.0) / alphaCutoff;
+    const int source = baseColorSource(info, material, quoted, ignored);
+    const auto key = std::make_pair(source, scale);
+    if (auto found = cutouts_.find(key); found != cutouts_.end()) return found->second;
+    std::optional<Image> decoded;
+    if (source >= 0) decoded = decodeSource(source, quoted);
+    // Named for `vitrum info`: the image's alpha, or the factor's alone.
+    Texture cutout{file_.string() + ": " + quoted + "'s baseColorFactor alpha", 1, 1, {glm::vec3(float(scale))}};
+    if (decoded && !decoded->alpha.empty()) {
+        cutout.path = imageName(source).string() + " (alpha)";
+        cutout.width = int(decoded->width);
+        cutout.height = int(decoded->height);
+        cutout.texels.resize(decoded->alpha.size());
+        for (std::size_t i = 0; i < cutout.texels.size(); ++i)
+            cutout.texels[i] = glm::vec3(float(double(decoded->alpha[i]) * scale));
+    } else if (scale >= 1.0) {
+        return cutouts_[key] = -1;  // opaque everywhere
+    }
+    const int index = int(scene_.textures.size());
+    scene_.textures.push_back(std::move(cutout));
+    return cutouts_[key] = index;
 }
 
 // KHR_texture_transform: uv' = T R S uv in glTF's texture coordinates (v down), with T the

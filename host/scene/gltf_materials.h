@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "image/image.h"
 #include "scene/scene.h"
 #include "scene/texel_limit.h"
 #include "scene/tinygltf.h"
@@ -52,10 +53,18 @@ private:
                                const std::string& quoted) const;
     std::uint32_t defaultMaterial();
     Material material(const tinygltf::Material& g, int index);
-    void specularGlossinessMaterial(const tinygltf::Value& sg, int index, const std::string& quoted, Material& m,
-                                    std::vector<std::string>& ignored);
+    // Returns its diffuse texture (index -1 for none) and diffuse factor's alpha.
+    std::pair<tinygltf::TextureInfo, double> specularGlossinessMaterial(const tinygltf::Value& sg, int index,
+                                                                        const std::string& quoted, Material& m,
+                                                                        std::vector<std::string>& ignored);
+    int baseColorSource(const tinygltf::TextureInfo& info, int material, const std::string& quoted,
+                        std::vector<std::string>& ignored);
+    std::filesystem::path imageName(int source) const;
+    Image decodeSource(int source, const std::string& quoted);
     int baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3 factor, int material, const std::string& quoted,
                          std::vector<std::string>& ignored);
+    int cutoutTexture(const tinygltf::TextureInfo& info, double alphaFactor, double alphaCutoff, int material,
+                      const std::string& quoted, std::vector<std::string>& ignored);
     glm::dmat3 textureTransform(const tinygltf::Value& transform, const std::string& quoted);
 
     Scene& scene_;
@@ -64,7 +73,9 @@ private:
     const TexelLimit& texelLimit_;
     std::map<int, std::uint32_t> materials_;  // by glTF material
     std::map<int, glm::dmat3> uvTransforms_;  // by glTF material: its baseColorTexture's KHR_texture_transform
+    std::map<int, int> sources_;              // by glTF material: its base colour's image, -1 for none
     std::map<std::tuple<int, float, float, float>, int> textures_;  // by image and factor
+    std::map<std::pair<int, double>, int> cutouts_;  // by image and alpha factor over cutoff: Material::cutout
     std::optional<std::uint32_t> defaultMaterial_;
 };
 

@@ -108,8 +108,9 @@ private:
             entries_.push_back(MtlEntry{.name = std::string(words[1]), .line = line_});
             return;
         }
-        static constexpr std::string_view kUsedKeys[] = {"Ka",     "Kd",     "Ks",       "Tf", "Ns",          "Ni",  "illum",
-                                                         "shader", "map_Kd", "priority", "Vd", "thin_walled", "tint"};
+        static constexpr std::string_view kUsedKeys[] = {"Ka",       "Kd",    "Ks",          "Tf",     "Ns",
+                                                         "Ni",       "illum", "shader",      "map_Kd", "map_d",
+                                                         "priority", "Vd",    "thin_walled", "tint"};
         if (std::find(std::begin(kUsedKeys), std::end(kUsedKeys), key) == std::end(kUsedKeys)) return;
         if (entries_.empty()) {
             warn(path_.string() + ":" + std::to_string(line_) + ": " + std::string(key) + " before any newmtl ignored");
@@ -142,11 +143,11 @@ private:
         } else if (key == "shader") {
             m.shader = integer(key, words, rest);
             m.shaderLine = line_;
-        } else {  // map_Kd [options] file: options start with '-'; otherwise the whole rest may hold spaces
-            if (words.size() < 2) fail("map_Kd expects a file name");
+        } else {  // map_Kd or map_d [options] file: options start with '-'; otherwise the whole rest may hold spaces
+            if (words.size() < 2) fail(std::string(key) + " expects a file name");
             bool hasOptions = std::any_of(words.begin() + 1, words.end(), [](auto w) { return w.front() == '-'; });
-            m.mapKd = std::string(hasOptions ? words.back() : rest);
-            m.mapKdLine = line_;
+            (key == "map_Kd" ? m.mapKd : m.mapD) = std::string(hasOptions ? words.back() : rest);
+            (key == "map_Kd" ? m.mapKdLine : m.mapDLine) = line_;
         }
     }
 

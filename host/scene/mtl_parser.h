@@ -20,6 +20,8 @@ struct MtlEntry {
     int shaderLine = 0;
     std::optional<std::string> mapKd;  // as written, relative to the MTL file
     int mapKdLine = 0;
+    std::optional<std::string> mapD;  // map_d: the cut-out mask, as written
+    int mapDLine = 0;
 };
 
 // Throws InputError for a file that cannot be read or a malformed value ("file.mtl:7: Kd expects

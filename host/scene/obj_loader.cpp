@@ -14,10 +14,11 @@
 #include <vector>
 
 #include "common/error.h"
-#include "common/parallel.h"
 #include "common/float_text.h"
 #include "common/input_file.h"
+#include "common/parallel.h"
 #include "image/image.h"
+#include "image/srgb.h"
 #include "scene/mtl_material.h"
 #include "scene/mtl_parser.h"
 #include "scene/quote_input.h"
@@ -469,6 +470,23 @@ std::vector<ObjPart> readParts(const fs::path& file, const std::string& text, st
     return read;
 }
 
+// map_d's mask (render-model-decisions.md, "Cut-out surfaces"): the image's alpha where it has an
+// alpha channel, else its grey level as stored (the mean of its channels re-encoded to sRGB: a
+// mask holds data, not colour); the surface is cut where it is below 1/2, glTF's default
+// cutoff, so Material::cutout holds twice it. The scalar `d` is not read (course files give
+// opaque materials `d 0`).
+std::vector<glm::vec3> cutoutTexels(Image& image) {
+    std::vector<glm::vec3> texels;
+    texels.reserve(image.pixels.size());
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        const glm::vec3& c = image.pixels[i];
+        const float value =
+            image.alpha.empty() ? (linearToSrgb(c.x) + linearToSrgb(c.y) + linearToSrgb(c.z)) / 3.0f : image.alpha[i];
+        texels.push_back(glm::vec3(2.0f * value));
+    }
+    return texels;
+}
+
 // The file's canonical path, where the file system gives one, as the key of the files read
 // once: a name it refuses (one longer than NAME_MAX, found by fuzzing) is its own key, and the
 // read that follows reports it.
@@ -494,7 +512,20 @@ const ObjLoader::Library& ObjLoader::library(const fs::path& mtlFile) {
         if (entry.mapKd) {
             std::string name = *entry.mapKd;
             std::replace(name.begin(), name.end(), '\\', '/');  // Windows exporters write backslashes
-            material.diffuseTexture = texture(mtlFile.parent_path() / name, mtlFile, entry.mapKdLine);
+            material.diffuseTexture =
+                texture(mtlFile.parent_path() / name, mtlFile, entry.mapKdLine, "map_Kd", "texture", "using Kd instead",
+                        [](Image& image) { return std::move(image.pixels); });
+        }
+        if (entry.mapD) {
+            std::string name = *entry.mapD;
+            std::replace(name.begin(), name.end(), '\\', '/');
+            if (material.model == MaterialModel::Glass)
+                warn(mtlFile.string() + ":" + std::to_string(entry.mapDLine) +
+                     ": map_d of a glass volume ignored (its "
+                     "closed surface bounds its medium)");
+            else
+                material.cutout = texture(mtlFile.parent_path() / name, mtlFile, entry.mapDLine, "map_d", "mask",
+                                          "the surface is not cut", cutoutTexels);
         }
         library[entry.name] = std::uint32_t(scene_.materials.size());
         scene_.materials.push_back(std::move(material));
@@ -502,21 +533,26 @@ const ObjLoader::Library& ObjLoader::library(const fs::path& mtlFile) {
     return libraries_[key] = std::move(library);
 }
 
-int ObjLoader::texture(const fs::path& imageFile, const fs::path& mtlFile, int line) {
-    fs::path key = fileKey(imageFile);
-    if (auto found = textures_.find(key); found != textures_.end()) return found->second;
+// An MTL's image, map_Kd's or map_d's (`key`), made into a texture by `texels`; read once per
+// file and key. Where it cannot be read, -1, warned once naming `what` it is and the `fallback`;
+// beyond the texel limit the scene is refused, naming the MTL line.
+int ObjLoader::texture(const fs::path& imageFile, const fs::path& mtlFile, int line, const std::string& key,
+                       const std::string& what, const std::string& fallback,
+                       const std::function<std::vector<glm::vec3>(Image&)>& texels) {
+    const auto cacheKey = std::make_pair(key, fileKey(imageFile));
+    if (auto found = textures_.find(cacheKey); found != textures_.end()) return found->second;
     int index = -1;
     try {
         Image image = readImage(imageFile, options_.texelLimit.leftAfter(scene_));
         index = int(scene_.textures.size());
-        scene_.textures.push_back(Texture{imageFile, int(image.width), int(image.height), std::move(image.pixels)});
+        scene_.textures.push_back(Texture{imageFile, int(image.width), int(image.height), texels(image)});
     } catch (const ImageTooLarge& e) {
-        throw inputError(mtlFile, line, std::string("map_Kd ") + e.what());
+        throw inputError(mtlFile, line, key + " " + e.what());
     } catch (const InputError& e) {
-        warn(mtlFile.string() + ":" + std::to_string(line) + ": texture cannot be read (" + e.what() +
-             "); using Kd instead");
+        warn(mtlFile.string() + ":" + std::to_string(line) + ": " + what + " cannot be read (" + e.what() + "); " +
+             fallback);
     }
-    return textures_[key] = index;
+    return textures_[cacheKey] = index;
 }
 
 std::uint32_t ObjLoader::defaultMaterialIndex() {

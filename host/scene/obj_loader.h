@@ -6,13 +6,17 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <glm/glm.hpp>
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
-#include "scene/scene.h"
+#include "image/image.h"
 #include "scene/load_options.h"
+#include "scene/scene.h"
 
 namespace vitrum {
 
@@ -36,13 +40,16 @@ public:
 private:
     using Library = std::map<std::string, std::uint32_t>;  // material name -> index in scene_.materials
     const Library& library(const std::filesystem::path& mtlFile);
-    int texture(const std::filesystem::path& imageFile, const std::filesystem::path& mtlFile, int line);
+    int texture(const std::filesystem::path& imageFile, const std::filesystem::path& mtlFile, int line,
+                const std::string& key, const std::string& what, const std::string& fallback,
+                const std::function<std::vector<glm::vec3>(Image&)>& texels);
     std::uint32_t defaultMaterialIndex();
 
     Scene& scene_;
     SceneLoadOptions options_;
     std::map<std::filesystem::path, Library> libraries_;
-    std::map<std::filesystem::path, int> textures_;  // -1: could not be read (warned once)
+    // By MTL key (map_Kd, map_d) and file: -1 where it could not be read (warned once).
+    std::map<std::pair<std::string, std::filesystem::path>, int> textures_;
     std::optional<std::uint32_t> defaultMaterial_;
 };
 

@@ -54,7 +54,16 @@ struct Material {
     // Absorption"); white for none. A thin glass's tint is its `diffuse`.
     glm::vec3 tint{1.0f};
     int diffuseTexture = -1;      // index into Scene::textures, -1 for none
+    // Cut-out parts (glTF's alphaMode MASK): index into Scene::textures of a grey texture, read at
+    // a hit's uv as map_Kd is, where the surface is not there when its value is below 1 (glTF's
+    // alpha over alphaCutoff); -1 for none. A ray passes such a hit by (docs/render-model-decisions.md,
+    // "Cut-out surfaces"). Not for glass volumes (hasCutouts).
+    int cutout = -1;
 };
+
+// Whether rays pass by parts of the material's surfaces (Material::cutout): not a glass volume's,
+// whose closed surface bounds its medium.
+inline bool hasCutouts(const Material& m) { return m.cutout >= 0 && m.model != MaterialModel::Glass; }
 
 struct Triangle {
     glm::vec3 position[3];

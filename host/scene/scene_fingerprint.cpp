@@ -83,6 +83,7 @@ std::uint64_t sceneFingerprint(const Scene& scene) {
         d.add(m.abbe);
         d.add(m.tint);
         d.add(m.diffuseTexture);
+        d.add(m.cutout);
     }
     d.add(scene.textures.size());
     for (const Texture& t : scene.textures) {

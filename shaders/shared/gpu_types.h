@@ -78,10 +78,13 @@ VITRUM_CONST uint kGpuInstanceNodes = 2u;
 
 // ---- Triangles (in BVH leaf order) -----------------------------------------------------------
 // Positions for intersection. v0.w = material index bits, v1.w = object index bits (the closed
-// mesh the triangle belongs to; it encloses a medium when its material is glass), v2.w =
-// kTriangleGlass bits when the material is glass (else 0), so that the traversal can tell touching
-// glass surfaces without reading materials (shaders/touching.glsl).
+// mesh the triangle belongs to; it encloses a medium when its material is glass), v2.w = the
+// triangle's mark, so that the traversal knows what it needs without reading materials:
+// kTriangleGlass where the material is glass (touching glass surfaces, shaders/touching.glsl);
+// kTriangleCutout | texture where the material has cut-out parts (Material::cutout, the texture
+// its index in the texture table; shaders/cutout.glsl); else 0.
 VITRUM_CONST uint kTriangleGlass = 1u;
+VITRUM_CONST uint kTriangleCutout = 0x80000000u;
 struct TriangleVertices {
     vec4 v0;
     vec4 v1;
@@ -90,7 +93,7 @@ struct TriangleVertices {
 
 // Shading attributes, in one texel buffer: a texel a triangle (in BVH order), then the scene's
 // distinct vertex normals of the triangles that need them, a texel each (xyz), then the corners'
-// texture coordinates of the triangles whose material has a texture, two texels each
+// texture coordinates of the triangles whose material has a texture or cut-outs, two texels each
 // (u0 v0 u1 v1, u2 v2 - -). A triangle's texel:
 //   flat (its three vertex normals the same bits, e.g. the geometric normal where the file has
 //   none) and untextured: xyz = that normal's float bits, w = kFlatTriangle;

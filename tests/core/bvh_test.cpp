@@ -314,6 +314,52 @@ TEST(Bvh, SingleTriangle) {
     EXPECT_FALSE(traceClosest<double>(bvh.nodes, packed, miss));
 }
 
+// Cut-out triangles (TraversalInput::cutouts): a hit the cut-outs reject is no hit for any of
+// the three traversals, and only marked triangles are asked about, with their barycentrics.
+TEST(Bvh, ACutAwayHitIsNoHitOfAnyTraversal) {
+    // Two stacked triangles, the upper (z = 0) marked, cut where u < 1/2.
+    std::vector<Triangle> two{Triangle{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {}, {}, 0, 0},
+                              Triangle{{{0, 0, -1}, {1, 0, -1}, {0, 1, -1}}, {}, {}, 0, 1}};
+    const Bvh bvh = buildBvh(two);
+    auto packed = packTriangleVertices(bvh, two);
+    const std::uint32_t upper = bvh.triangleOrder[0] == 0 ? 0u : 1u;
+    packed[upper].v2.w = std::bit_cast<float>(gpu::kTriangleCutout | 5u);
+    struct HalfCut final : Cutouts {
+        mutable std::vector<std::uint32_t> asked;
+        bool cutAway(std::uint32_t triangle, std::uint32_t mark, float u, float) const override {
+            asked.push_back(triangle);
+            EXPECT_EQ(mark, gpu::kTriangleCutout | 5u);
+            return u < 0.5f;
+        }
+        bool cutAway(std::uint32_t triangle, std::uint32_t mark, double u, double v) const override {
+            return cutAway(triangle, mark, float(u), float(v));
+        }
+    } cutouts;
+    const TraversalInput input{bvh.nodes, packed, {}, &cutouts};
+    const Ray<float> throughTheCut{{0.25f, 0.25f, 1.0f}, {0.0f, 0.0f, -1.0f}};
+    const Ray<float> onTheRest{{0.75f, 0.125f, 1.0f}, {0.0f, 0.0f, -1.0f}};
+    const auto passing = traceClosest<float>(input, throughTheCut);
+    ASSERT_TRUE(passing);
+    EXPECT_EQ(passing->triangle, 1u - upper);
+    EXPECT_FLOAT_EQ(passing->t, 2.0f);
+    const auto stopped = traceClosest<double>(input, Ray<double>{{0.75, 0.125, 1.0}, {0.0, 0.0, -1.0}});
+    ASSERT_TRUE(stopped);
+    EXPECT_EQ(stopped->triangle, upper);
+    Ray<float> shadow = throughTheCut;
+    shadow.tMax = 1.5f;  // reaches the upper triangle only
+    EXPECT_FALSE(traceAny<float>(input, shadow));
+    shadow.origin = onTheRest.origin;
+    EXPECT_TRUE(traceAny<float>(input, shadow));
+    std::vector<TriangleHit<float>> hits;
+    traceAll<float>(input, throughTheCut, hits);
+    ASSERT_EQ(hits.size(), 1u);
+    EXPECT_EQ(hits[0].triangle, 1u - upper);
+    for (std::uint32_t asked : cutouts.asked) EXPECT_EQ(asked, upper) << "only the marked triangle is asked";
+    EXPECT_FALSE(cutouts.asked.empty());
+    // Without cut-outs the marked triangle is whole.
+    EXPECT_EQ(traceClosest<float>(TraversalInput{bvh.nodes, packed}, throughTheCut)->triangle, upper);
+}
+
 TEST(Bvh, Empty) {
     const Bvh bvh = buildBvh({});
     Ray<float> ray{{0, 0, -1}, {0, 0, 1}};

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <tuple>
@@ -18,6 +19,7 @@
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
 #include <meshoptimizer.h>
+#include <stb/stb_image_write.h>
 #include <webp/encode.h>
 #include <nlohmann/json.hpp>
 
@@ -877,6 +879,108 @@ TEST_F(GltfLoader, VolumeGlassIsTintedByItsBaseColourFactor) {
     // A thin glass's tint, its diffuse colour, is kept within [0, 1] the same way.
     EXPECT_EQ(scene.materials[4].model, MaterialModel::ThinGlass);
     EXPECT_EQ(scene.materials[4].diffuse, glm::vec3(1.0f, 0.0f, 0.5f));
+}
+
+// An RGBA or grey-and-alpha PNG (stb_image_write: the project's own writer writes RGB only).
+std::vector<unsigned char> pngWithAlpha(int width, int height, int channels, const std::vector<unsigned char>& values) {
+    std::vector<unsigned char> bytes;
+    auto append = [](void* context, void* data, int size) {
+        auto* out = static_cast<std::vector<unsigned char>*>(context);
+        out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+    };
+    EXPECT_NE(stbi_write_png_to_func(append, &bytes, width, height, channels, values.data(), width * channels), 0);
+    return bytes;
+}
+
+// alphaMode MASK (glTF 2.0, "Alpha Coverage" and alphaCutoff): the surface is not there where the base
+// colour's alpha, the texture's times the factor's, is below alphaCutoff (0.5 unless given).
+// Material::cutout holds that alpha over the cutoff a texel: exactly 2 a / 255 for an 8-bit
+// alpha a and the default cutoff, a f / c otherwise. An opaque material's alpha is ignored, a
+// factor alone that is below the cutoff cuts the whole surface (one texel), and nothing is cut
+// where the alpha cannot fall below the cutoff.
+TEST_F(GltfLoader, AMaskedMaterialIsCutOutWhereItsAlphaIsBelowTheCutoff) {
+    GltfBuilder b;
+    const std::vector<unsigned char> rgba = {255, 0, 0, 0, 0, 255, 0, 127, 0, 0, 255, 128, 9, 9, 9, 255};
+    b.doc()["images"] =
+        json::array({{{"uri", "data:image/png;base64," + base64(pngWithAlpha(2, 2, 4, rgba))}},
+                     {{"uri", "data:image/png;base64," + base64(pngWithAlpha(2, 1, 2, {50, 40, 60, 200}))}},
+                     {{"uri", "data:image/png;base64," + base64(pngWithAlpha(1, 1, 3, {1, 2, 3}))}}});
+    b.doc()["textures"] = json::array({{{"source", 0}}, {{"source", 1}}, {{"source", 2}}});
+    const int uvs = b.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, 5126, "VEC2", 3);
+    const int positions = b.positions(kTriangle);
+    auto masked = [](std::string name, int texture, double alpha, std::optional<double> cutoff = std::nullopt,
+                     std::string mode = "MASK") {
+        json pbr = {{"baseColorFactor", {0.5, 0.5, 0.5, alpha}}, {"metallicFactor", 0.0}};
+        if (texture >= 0) pbr["baseColorTexture"] = {{"index", texture}};
+        json m = {{"name", std::move(name)}, {"alphaMode", std::move(mode)}, {"pbrMetallicRoughness", pbr}};
+        if (cutoff) m["alphaCutoff"] = *cutoff;
+        return m;
+    };
+    json mirror = masked("mirror", 0, 1.0);
+    mirror["pbrMetallicRoughness"]["metallicFactor"] = 1.0;
+    json volume = masked("volume", 0, 1.0);
+    volume["extensions"] = {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                            {"KHR_materials_volume", {{"thicknessFactor", 0.1}}}};
+    json thin = masked("thin", 0, 1.0);
+    thin["extensions"] = {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}};
+    // KHR_materials_pbrSpecularGlossiness's diffuse replaces the base colour, its alpha too.
+    json glossy = masked("glossy", 0, 1.0);
+    glossy["extensions"] = {{"KHR_materials_pbrSpecularGlossiness", {{"diffuseFactor", {1.0, 1.0, 1.0, 0.3}}}}};
+    for (const json& material :
+         {masked("rgba", 0, 1.0), masked("scaled", 0, 0.8, 0.25), masked("grey", 1, 1.0),
+          masked("opaque", 0, 1.0, 0.5, "OPAQUE"), masked("factor only", -1, 0.3), masked("factor enough", -1, 0.5),
+          masked("no alpha channel", 2, 0.4, 0.8), masked("cutoff 0", 0, 1.0, 0.0), mirror, volume, thin, glossy})
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", positions}, {"TEXCOORD_0", uvs}}},
+                                 {"material", b.material(material)}})}});
+    ::testing::internal::CaptureStderr();
+    const Scene scene = load(b.write(dir_ / "masked.gltf"));
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    ASSERT_EQ(scene.materials.size(), 12u);
+    auto cutout = [&](std::size_t material) -> std::vector<float> {
+        const Material& m = scene.materials[material];
+        if (m.cutout < 0) return {};
+        const Texture& t = scene.textures[std::size_t(m.cutout)];
+        std::vector<float> values;
+        for (const glm::vec3& texel : t.texels) {
+            EXPECT_TRUE(texel.x == texel.y && texel.y == texel.z) << m.name << ": a grey texture";
+            values.push_back(texel.x);
+        }
+        EXPECT_EQ(values.size(), std::size_t(t.width) * std::size_t(t.height)) << m.name;
+        return values;
+    };
+    const std::vector<float> rgbaAlpha = {0.0f, float(2.0 * 127 / 255.0), float(2.0 * 128 / 255.0), float(2.0)};
+    EXPECT_EQ(cutout(0), rgbaAlpha);
+    EXPECT_EQ(scene.textures[std::size_t(scene.materials[0].cutout)].width, 2);
+    // The colour keeps its own texture, the alpha left out of it.
+    ASSERT_GE(scene.materials[0].diffuseTexture, 0);
+    EXPECT_NE(scene.materials[0].diffuseTexture, scene.materials[0].cutout);
+    // The alpha as read, a float a / 255, times f / c, rounded once.
+    const double scale = 0.8 / 0.25;
+    EXPECT_EQ(cutout(1), (std::vector<float>{0.0f, float(double(127 / 255.0f) * scale),
+                                             float(double(128 / 255.0f) * scale), float(scale)}));
+    EXPECT_EQ(cutout(2), (std::vector<float>{float(2.0 * 40 / 255.0), float(2.0 * 200 / 255.0)}));
+    EXPECT_EQ(cutout(3), std::vector<float>{}) << "OPAQUE ignores alpha";
+    EXPECT_EQ(cutout(4), std::vector<float>{float(0.3 / 0.5)}) << "a factor below the cutoff cuts everything";
+    EXPECT_EQ(cutout(5), std::vector<float>{}) << "alpha 0.5 is not below the cutoff 0.5";
+    EXPECT_EQ(cutout(6), std::vector<float>{float(0.4 / 0.8)}) << "an image without alpha is opaque";
+    EXPECT_EQ(cutout(7), std::vector<float>{}) << "no alpha is below a cutoff of 0";
+    // A metal's colour texture is not read, its alpha is.
+    EXPECT_EQ(scene.materials[8].model, MaterialModel::Mirror);
+    EXPECT_EQ(cutout(8), rgbaAlpha);
+    // A glass volume keeps its closed surface (it bounds the medium), with a warning.
+    EXPECT_EQ(scene.materials[9].model, MaterialModel::Glass);
+    EXPECT_EQ(scene.materials[9].cutout, -1);
+    EXPECT_NE(warnings.find("(\"volume\"): ignored: baseColorTexture (a glass volume is tinted by its baseColorFactor "
+                            "alone), alphaMode MASK (a glass volume's surface is closed: it bounds its medium)"),
+              std::string::npos)
+        << warnings;
+    // A thin glass's holes (GlassBrokenWindow's).
+    EXPECT_EQ(scene.materials[10].model, MaterialModel::ThinGlass);
+    EXPECT_EQ(cutout(10), rgbaAlpha);
+    EXPECT_EQ(warnings.find("alphaMode"), warnings.rfind("alphaMode")) << "only the volume's is ignored: " << warnings;
+    EXPECT_EQ(cutout(11), std::vector<float>{float(double(0.3f) / 0.5)});
+    const SceneFeatures features = analyseScene(scene);
+    EXPECT_TRUE(features.cutouts);
 }
 
 // tinygltf passes material extensions' values on unchecked: one of the wrong type is refused,

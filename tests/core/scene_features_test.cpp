@@ -92,6 +92,28 @@ TEST(SceneFeatures, OnlyTintedGlassNeedsTheTint) {
     EXPECT_TRUE(TraceSpecialization::general().glassTints);
 }
 
+// Only a material with cut-outs that is not a glass volume (whose closed surface bounds its
+// medium) calls for the test of cut-outs in the traversal; a material no triangle uses does not.
+TEST(SceneFeatures, OnlyCutOutSurfacesNeedTheCutoutTest) {
+    Scene scene = loadProjectScene("scenes/water_glass.json");
+    EXPECT_FALSE(analyseScene(scene).cutouts);
+    scene.textures.push_back(Texture{"cutout", 1, 1, {glm::vec3(0.5f)}});
+    for (Material& m : scene.materials)
+        if (m.model == MaterialModel::Glass) m.cutout = int(scene.textures.size() - 1);
+    EXPECT_FALSE(analyseScene(scene).cutouts);
+    scene.materials.push_back(scene.materials[0]);
+    scene.materials.back().model = MaterialModel::Phong;
+    EXPECT_FALSE(analyseScene(scene).cutouts) << "a material no triangle uses";
+    for (Material& m : scene.materials)
+        if (m.model != MaterialModel::Glass) m.cutout = int(scene.textures.size() - 1);
+    const SceneFeatures f = analyseScene(scene);
+    EXPECT_TRUE(f.cutouts);
+    EXPECT_TRUE(TraceSpecialization::forScene(scene, f).cutouts);
+    EXPECT_TRUE(TraceSpecialization::general().cutouts);
+    EXPECT_FALSE(
+        TraceSpecialization::forScene(scene, analyseScene(loadProjectScene("scenes/water_glass.json"))).cutouts);
+}
+
 TEST(SceneFeatures, GlassRestingOnAnOpaqueSurfaceNeedsTheContactCheck) {
     // A glass box on an opaque slab: standing on it, or a gap far below the touching distance
     // (1e-5 of the diagonal, here ~9e-5; the analysis looks twice as far), calls for the check;

@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include <stb/stb_image_write.h>
+
 #include "analysis/scene_features.h"
 #include "common/error.h"
 #include "image/srgb.h"
@@ -550,6 +552,47 @@ TEST(SceneMtl, TintTintsAGlassSurface) {
     EXPECT_EQ(materialNamed(scene, "pane").tint, glm::vec3(1.0f));
     EXPECT_EQ(materialNamed(scene, "plastic").tint, glm::vec3(1.0f));
     EXPECT_TRUE(analyseScene(scene).glassTints);
+}
+
+// `map_d file` (render-model-decisions.md, "Cut-out surfaces"): the surface is cut where the
+// mask is below 1/2, its alpha where the image has an alpha channel, else its grey level as the
+// file stores it (not sRGB-decoded); Material::cutout holds twice it. Options come before the
+// file, as map_Kd's; a glass volume's map_d and an unreadable file are ignored with a warning.
+TEST(SceneMtl, MapDCutsTheSurfaceWhereTheMaskIsBelowOneHalf) {
+    fs::path dir = tempDir();
+    const std::uint8_t grey[4] = {0, 100, 128, 255}, rgba[8] = {9, 9, 9, 200, 9, 9, 9, 60};
+    ASSERT_NE(stbi_write_png((dir / "grey.png").string().c_str(), 4, 1, 1, grey, 4), 0);
+    ASSERT_NE(stbi_write_png((dir / "rgba.png").string().c_str(), 2, 1, 4, rgba, 8), 0);
+    write(dir / "t.mtl",
+          "newmtl leaf\nshader 3\nmap_d grey.png\n"
+          "newmtl fence\nshader 2\nmap_d -imfchan m rgba.png\n"
+          "newmtl pane\nshader 4\nthin_walled 1\nmap_d grey.png\n"
+          "newmtl volume\nshader 4\nmap_d grey.png\n"
+          "newmtl lost\nshader 3\nmap_d missing.png\n");
+    write(dir / "t.obj",
+          "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl leaf\nf 1 2 3\nusemtl fence\nf 1 2 3\n"
+          "usemtl pane\nf 1 2 3\nusemtl volume\nf 1 2 3\nusemtl lost\nf 1 2 3\n");
+    const int before = warningCount();
+    const Scene scene = loadScene(dir / "t.obj");
+    EXPECT_EQ(warningCount(), before + 2);  // the volume's map_d, the missing file
+    auto values = [&](const std::string& name) {
+        std::vector<float> v;
+        const int cutout = materialNamed(scene, name).cutout;
+        if (cutout >= 0)
+            for (const glm::vec3& texel : scene.textures[std::size_t(cutout)].texels) v.push_back(texel.x);
+        return v;
+    };
+    const std::vector<float> leaf = values("leaf");
+    ASSERT_EQ(leaf.size(), 4u);
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(leaf[std::size_t(i)], 2.0 * grey[i] / 255.0, 1e-6) << i;
+    EXPECT_LT(leaf[1], 1.0f);  // 100 / 255 < 1/2: cut
+    EXPECT_GE(leaf[2], 1.0f);  // 128 / 255 > 1/2: kept
+    EXPECT_EQ(values("fence"), (std::vector<float>{2.0f * (200 / 255.0f), 2.0f * (60 / 255.0f)}));
+    EXPECT_EQ(materialNamed(scene, "pane").model, MaterialModel::ThinGlass);
+    EXPECT_EQ(values("pane"), leaf) << "one mask for the file";
+    EXPECT_EQ(materialNamed(scene, "volume").cutout, -1);
+    EXPECT_EQ(materialNamed(scene, "lost").cutout, -1);
+    EXPECT_TRUE(analyseScene(scene).cutouts);
 }
 
 TEST(SceneMtl, KsTypoReadsAsOneWithOneWarningPerFile) {

@@ -18,16 +18,6 @@ Material tintedGlass(glm::vec3 tint, float ior = 1.5f) {
     return m;
 }
 
-// The general kernel decides the tint at run time: its image must be the specialized one's.
-void expectTheGeneralKernelAgrees(const Scene& scene, const RenderPair& specialized) {
-    VulkanRenderOptions general;
-    general.specialize = false;
-    RenderStats stats;
-    const Image image = renderVulkan(testDevice(), scene, buildSceneBvh(scene), general, stats);
-    EXPECT_EQ(differingPixels(image, specialized.gpu), 0u);
-    expectSameWork(stats, specialized.gpuStats);
-}
-
 // A slab 0.1 thick seen head-on (baseScene's centre ray) under a white background, exact
 // Fresnel: the front reflects R; the light leaving after k inner reflections, T^2 R^k, crossed
 // two surfaces, so a tint t takes t^2 of it (the reflections inside take nothing): R + t^2 T^2

@@ -110,6 +110,17 @@ inline void expectSameWork(const RenderStats& a, const RenderStats& b) {
     EXPECT_EQ(a.maxMediumDepth, b.maxMediumDepth);
 }
 
+// A feature the general kernel decides at run time (a glass tint, a cut-out): its image must be
+// the specialized kernel's, bit for bit, with the same work counted.
+inline void expectTheGeneralKernelAgrees(const Scene& scene, const RenderPair& specialized) {
+    VulkanRenderOptions general;
+    general.specialize = false;
+    RenderStats stats;
+    const Image image = renderVulkan(testDevice(), scene, buildSceneBvh(scene), general, stats);
+    EXPECT_EQ(differingPixels(image, specialized.gpu), 0u);
+    expectSameWork(stats, specialized.gpuStats);
+}
+
 // Standard deviation of the luminance-ish channel mean: 0 for a constant image.
 inline double imageSpread(const Image& image) {
     double sum = 0, sumSquares = 0;

@@ -1,7 +1,7 @@
 // Instancing on both backends (issue 50; docs/gpu-design.md, "Instancing"): placed copies render
-// as their flattened scene (of glass, tinted glass and thin glass), a mirroring copy's surfaces face out, two copies of a cube placed face
-// to face are one box, scaling keeps the image, and a pixel suspended inside an instance resumes
-// there.
+// as their flattened scene (of glass, tinted glass, thin glass and cut-out surfaces), a mirroring copy's surfaces face
+// out, two copies of a cube placed face to face are one box, scaling keeps the image, and a pixel suspended inside an
+// instance resumes there.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -79,6 +79,32 @@ TEST(Instancing, TintedGlassCopiesRenderAsTheirFlattenedScene) {
     expectSameImage(instanced.cpu, flat.cpu);
     EXPECT_TRUE(instanced.gpuStats.kernel && instanced.gpuStats.kernel->glassTints);
     EXPECT_GT(diffImages(instanced.gpu, untinted.gpu).shareOver005, 0.01);
+}
+
+// Copies of a mesh with cut-out parts (Material::cutout): each copy's hits are tested against
+// the texture at the mesh's uvs, in the mesh's space, as the flattened copies' are in the world.
+TEST(Instancing, CutOutCopiesRenderAsTheirFlattenedScene) {
+    Scene scene = instancedScene();
+    Material plastic =
+        makeMaterial(MaterialModel::Phong, glm::vec3(0.05f), glm::vec3(0.8f, 0.3f, 0.2f), glm::vec3(0.3f), 40.0f, 1.5f);
+    plastic.cutout = int(scene.textures.size());
+    scene.textures.push_back(Texture{"cutout", 3, 3, {}});
+    for (int i = 0; i < 9; ++i) scene.textures.back().texels.push_back(glm::vec3(i % 2 == 0 ? 0.2f : 1.5f));
+    scene.materials.push_back(plastic);
+    const Mesh& tetrahedron = scene.meshes[1];
+    for (std::uint32_t i = tetrahedron.first; i < tetrahedron.first + tetrahedron.count; ++i) {
+        Triangle& t = scene.triangles[i];
+        t.material = std::uint32_t(scene.materials.size() - 1);
+        for (int k = 0; k < 3; ++k) t.uv[k] = 4.0f * glm::vec2(t.position[k].x + t.position[k].z, t.position[k].y);
+    }
+    const RenderPair instanced = renderBoth(scene);
+    const RenderPair flat = renderBoth(flattened(scene));
+    expectImagesMatch(instanced);
+    expectSameImage(instanced.gpu, flat.gpu);
+    expectSameImage(instanced.cpu, flat.cpu);
+    EXPECT_TRUE(instanced.gpuStats.kernel && instanced.gpuStats.kernel->cutouts);
+    scene.materials.back().cutout = -1;
+    EXPECT_GT(diffImages(instanced.gpu, renderBoth(scene).gpu).shareOver005, 0.01) << "the holes show";
 }
 
 // A mirroring instance's triangles face out as its flattened copy's do (the loaders reverse the

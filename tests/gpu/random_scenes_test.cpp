@@ -161,6 +161,9 @@ public:
                     scene.materials[i].tint = vec3(uniform(0.2f, 1), uniform(0.2f, 1), uniform(0.2f, 1));
                     drawn_ += ", the glass of material " + std::to_string(i) + " tinted";
                 }
+        // Surfaces cut out where a texture is below 1 (glTF's alphaMode MASK), about half of
+        // them: an opaque or thin-glass material's.
+        if (chance(0.25)) addCutout(scene);
         return transformed(scene, scale, shift);
     }
 
@@ -251,6 +254,25 @@ private:
         scene.textures.push_back(randomTexture(side, side));
         for (Triangle& t : scene.triangles)
             for (int k = 0; k < 3; ++k) t.uv[k] = 0.7f * glm::vec2(t.position[k].x + t.position[k].z, t.position[k].y);
+    }
+
+    // A random grey texture of 2 to 5 texels a side, from 0 to 2, cutting one material that is
+    // not a glass volume (if there is one); the triangles' texture coordinates as addTexture's.
+    void addCutout(Scene& scene) {
+        std::vector<std::size_t> candidates;
+        for (std::size_t i = 0; i < scene.materials.size(); ++i)
+            if (scene.materials[i].model != MaterialModel::Glass) candidates.push_back(i);
+        if (candidates.empty()) return;
+        const std::size_t material =
+            candidates[std::uniform_int_distribution<std::size_t>(0, candidates.size() - 1)(rng_)];
+        const int side = int(uniform(2.0f, 5.99f));
+        Texture texture{"cutout", side, side, {}};
+        for (int i = 0; i < side * side; ++i) texture.texels.push_back(vec3(uniform(0, 2)));
+        scene.materials[material].cutout = int(scene.textures.size());
+        scene.textures.push_back(std::move(texture));
+        for (Triangle& t : scene.triangles)
+            for (int k = 0; k < 3; ++k) t.uv[k] = 0.7f * glm::vec2(t.position[k].x + t.position[k].z, t.position[k].y);
+        drawn_ += ", material " + std::to_string(material) + " cut out";
     }
 
     // Every position, normal and direction of the scene turned by `angle` about `axis`.
