@@ -16,12 +16,14 @@ static_assert(std::uint32_t(TextureFilter::Bilinear) == gpu::kFilterBilinear &&
 
 namespace {
 float bits(std::uint32_t value) { return std::bit_cast<float>(value); }
-}  // namespace
 
+// The mark a triangle of material `m` carries in its vertices' v2.w (gpu_types.h, "Triangles"),
+// which the kernel's traversal reads.
 std::uint32_t triangleMark(const Material& m) {
     if (m.model == MaterialModel::Glass) return gpu::kTriangleGlass;
     return hasCutouts(m) ? gpu::kTriangleCutout | std::uint32_t(m.cutout) : 0u;
 }
+}  // namespace
 
 void packVertices(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleVertices> into) {
     parallelFor(into.size(), [&](std::size_t begin, std::size_t end) {

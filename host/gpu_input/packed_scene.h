@@ -36,9 +36,6 @@ PackedTables packTables(const Scene& scene);
 // to live, on every core: the renderer writes them into the device's buffer where the host can map
 // it, so that a big model's host memory holds no second copy (as the shading texels,
 // gpu_input/shading_texels.h, and the BVH nodes, gpu_input/traversal_nodes.h).
-// The mark a triangle of material `m` carries in its vertices' v2.w (gpu_types.h, "Triangles"),
-// which both traversals read.
-std::uint32_t triangleMark(const Material& m);
 void packVertices(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleVertices> into);  // with their marks
 
 // All of it at once (tests, benchmarks).
