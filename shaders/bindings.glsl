@@ -17,8 +17,8 @@ layout(set = 0, binding = kBindingVertices, rgba32ui) uniform readonly uimageBuf
 layout(set = 0, binding = kBindingShading, rgba32ui) uniform readonly uimageBuffer shadingTexels;
 layout(set = 0, binding = kBindingMaterials, rgba32ui) uniform readonly uimageBuffer materialTexels;
 layout(set = 0, binding = kBindingLights, rgba32ui) uniform readonly uimageBuffer lightTexels;
-layout(std430, set = 0, binding = kBindingTextures) readonly buffer Textures { TextureInfo textures[]; };
-layout(std430, set = 0, binding = kBindingTexels) readonly buffer Texels { float texels[]; };  // RGB, packed
+layout(set = 0, binding = kBindingTextures, rgba32ui) uniform readonly uimageBuffer textureTable;  // TextureInfo a texel
+layout(set = 0, binding = kBindingTexels, rgba32ui) uniform readonly uimageBuffer textureTexels;  // RGB in xyz
 layout(set = 0, binding = kBindingObjectMedia, rgba32ui) uniform readonly uimageBuffer objectMediumTexels;
 // Texel 0: .x = the number of wavelength samples (0 where nothing disperses); texel 1 + k:
 // sample k's weight (.xyz) and its 1 / lambda^2 - 1 / lambda_d^2 (.w), WavelengthSample's.

@@ -1,6 +1,6 @@
 // Reading textures and environment maps: texel centres at (i + 0.5) / size, bilinear or nearest,
-// wrap or clamp per axis; the same steps as host/cpu/texture_sampling.h. Texels are packed RGB
-// floats (12 bytes each, so a 4096 x 2048 map fits lavapipe's 128 MiB per buffer).
+// wrap or clamp per axis; the same steps as host/cpu/texture_sampling.h. A texel is one texel of
+// the texture texel buffer (gpu_types.h's TextureInfo).
 #ifndef VITRUM_TEXTURE_GLSL
 #define VITRUM_TEXTURE_GLSL
 
@@ -19,13 +19,12 @@ int addressTexel(int i, int size, bool wrap) {
 vec3 texelAt(uvec4 info, int x, int y, bool wrapU, bool wrapV) {
     int w = int(info.y);
     int h = int(info.z);
-    uint index = 3u * (info.x + uint(addressTexel(y, h, wrapV) * w + addressTexel(x, w, wrapU)));
-    return vec3(texels[index], texels[index + 1u], texels[index + 2u]);
+    return fetchVec4(textureTexels, info.x, uint(addressTexel(y, h, wrapV) * w + addressTexel(x, w, wrapU))).xyz;
 }
 
 // The value of texture `index` at (u, v) in [0, 1]^2, v = 0 at the top row.
 vec3 sampleTexture(uint index, vec2 uv, bool wrapU, bool wrapV) {
-    uvec4 info = textures[index].offsetAndSize;
+    uvec4 info = imageLoad(textureTable, int(index));
     if (any(isnan(uv)) || any(isinf(uv))) return vec3(0.0);
     float x = uv.x * float(info.y);
     float y = uv.y * float(info.z);

@@ -130,8 +130,8 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
     if (command.backend == Backend::Vulkan) {
         const HugePageHeap window;  // the driver's loading and self-check (common/huge_pages.h)
         device.emplace(command.device);
-        const BufferLimit limit = bufferLimit(*device, BufferKind::Storage);
-        texelLimit = {limit.bytes, describeBufferLimit(*device, BufferKind::Storage)};
+        const BufferLimit limit = bufferLimit(*device, BufferKind::Texel);
+        texelLimit = {limit.bytes, describeBufferLimit(*device, BufferKind::Texel)};
     }
     const double deviceSeconds = std::chrono::duration<double>(Clock::now() - start).count();
 

@@ -55,7 +55,7 @@ void checkSceneFitsDevice(const VulkanDevice& device, std::size_t triangles, con
         buffers.push_back({"materials", scene->materials.size() * sizeof(gpu::GpuMaterial), kTexel});
         buffers.push_back({"lights", scene->lights.size() * sizeof(gpu::GpuLight), kTexel});
         // Within the limit: loadScene refused more.
-        buffers.push_back({"texture texels", texels * PixelLimit::kBytesPerPixel, kStorage});
+        buffers.push_back({"texture texels", texels * PixelLimit::kBytesPerPixel, kTexel});
         // The general kernel's: the scene's analysis, which may need fewer pending rays, comes later.
         const std::uint32_t tile = tileSizeFor(device.description(), tileSize);
         const glm::uvec2 tilePixels(std::min(tile, scene->camera.width), std::min(tile, scene->camera.height));

@@ -51,8 +51,8 @@ ComputePipeline makeTracePipeline(const VulkanDevice& device, const TraceSpecial
     std::array<VkDescriptorType, gpu::kTraceBindingCount> bindings;
     bindings.fill(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     for (std::uint32_t texels : {gpu::kBindingParams, gpu::kBindingNodes, gpu::kBindingVertices, gpu::kBindingShading,
-                                 gpu::kBindingMaterials, gpu::kBindingLights, gpu::kBindingObjectMedia,
-                                 gpu::kBindingWavelengths})
+                                 gpu::kBindingMaterials, gpu::kBindingLights, gpu::kBindingTextures,
+                                 gpu::kBindingTexels, gpu::kBindingObjectMedia, gpu::kBindingWavelengths})
         bindings[texels] = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
     const TraceKernelConstants constants = traceKernelConstants(specialization, resumable, sums, persistent);
     std::array<VkSpecializationMapEntry, constants.size()> entries;

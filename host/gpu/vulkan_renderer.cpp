@@ -105,8 +105,8 @@ TraceBuffers makeBuffers(VulkanDevice& device, const Scene& scene, const Bvh& bv
     const PackedTables packed = packTables(scene);
     b.add(gpu::kBindingMaterials, makeTexelBuffer(device, spanOf(packed.materials), "materials"));
     b.add(gpu::kBindingLights, makeTexelBuffer(device, spanOf(packed.lights), "lights"));
-    b.add(gpu::kBindingTextures, makeStorageBuffer(device, spanOf(packed.textures), "texture table"));
-    b.add(gpu::kBindingTexels, makeStorageBuffer(device, spanOf(packed.texels), "texture texels"));
+    b.add(gpu::kBindingTextures, makeTexelBuffer(device, spanOf(packed.textures), "texture table"));
+    b.add(gpu::kBindingTexels, makeTexelBuffer(device, spanOf(packed.texels), "texture texels"));
     b.add(gpu::kBindingObjectMedia, makeTexelBuffer(device, spanOf(objectMediumTexels(packed)), "object media"));
     b.add(gpu::kBindingWavelengths, makeTexelBuffer(device, spanOf(wavelengthTexels(packed)), "wavelength samples"));
     for (const TileBuffer& buffer : kTileBuffers) {

@@ -60,8 +60,8 @@ PackedTables packTables(const Scene& scene) {
     for (const PointLight& light : scene.lights)
         packed.lights.push_back({glm::vec4(light.position, light.inverseSquare ? 1.0f : 0.0f), glm::vec4(light.colour, 0.0f)});
     for (const Texture& texture : scene.textures) {
-        packed.textures.push_back({glm::uvec4(packed.texels.size() / 3, texture.width, texture.height, 0)});
-        for (const glm::vec3& texel : texture.texels) packed.texels.insert(packed.texels.end(), {texel.x, texel.y, texel.z});
+        packed.textures.push_back({glm::uvec4(packed.texels.size(), texture.width, texture.height, 0)});
+        for (const glm::vec3& texel : texture.texels) packed.texels.push_back(glm::vec4(texel, 0.0f));
     }
     packed.objectMaterials = objectMediumMaterials(scene);
     for (std::uint32_t material : packed.objectMaterials) {

@@ -20,7 +20,7 @@ struct PackedTables {
     std::vector<gpu::GpuMaterial> materials;
     std::vector<gpu::GpuLight> lights;
     std::vector<gpu::TextureInfo> textures;
-    std::vector<float> texels;  // RGB, 3 floats a texel
+    std::vector<glm::vec4> texels;  // RGB in xyz, a texel each (gpu_types.h, TextureInfo)
     // The material of each object's medium (objectMediumMaterials, render_model/medium_materials.h).
     std::vector<std::uint32_t> objectMaterials;
     std::vector<std::int32_t> objectPriorities;  // the priority of each object's medium

@@ -1,6 +1,6 @@
 // The most pixels a caller can hold of an image, checked against the size its header declares
 // before it is decoded: a render's device keeps every texture and environment map as linear RGB
-// float in one storage buffer, so an image too large for it is refused by its header, not after
+// float in one texel buffer, so an image too large for it is refused by its header, not after
 // gigabytes were decoded for nothing (docs/scene-format.md, "Size limits").
 #pragma once
 
@@ -23,7 +23,7 @@ public:
 
 struct PixelLimit {
     std::uint64_t pixels = std::numeric_limits<std::uint64_t>::max();
-    std::string reason;  // why no more: "llvmpipe allows 128 MiB per storage buffer (...) for all textures"
+    std::string reason;  // why no more: "llvmpipe allows 2048 MiB per texel buffer (...) for all textures"
 
     // Throws ImageTooLarge naming the file when `what` of width x height pixels exceeds the limit.
     void check(const std::filesystem::path& path, const std::string& what, std::uint64_t width,
@@ -33,11 +33,13 @@ struct PixelLimit {
                                        what + " of " + std::to_string(width) + "x" + std::to_string(height) +
                                            " pixels does not fit the device: it needs " +
                                            describeBytes(width * height * kBytesPerPixel) +
-                                           " as linear RGB float, but " + reason)
+                                           " as linear RGB float texels of 16 bytes, but " + reason)
                                 .what());
     }
 
-    static constexpr std::uint64_t kBytesPerPixel = 3 * sizeof(float);
+    // A pixel on the device: its RGB floats and a fourth, one texel of a texel buffer
+    // (shaders/shared/gpu_types.h, TextureInfo).
+    static constexpr std::uint64_t kBytesPerPixel = 4 * sizeof(float);
 };
 
 }  // namespace vitrum

@@ -1,6 +1,7 @@
 // The most bytes a scene's textures and environment maps may take together as linear RGB float
-// (a render's device holds them in one storage buffer), so that the loaders refuse an image too
-// large for what is left by its header, before decoding it (image/pixel_limit.h).
+// texels of 16 bytes (a render's device holds them in one texel buffer), so that the loaders
+// refuse an image too large for what is left by its header, before decoding it
+// (image/pixel_limit.h).
 #pragma once
 
 #include <cstdint>

@@ -130,7 +130,9 @@ struct GpuMaterial {
     vec4 attenuation;
 };
 
-// A texture is a run of texels in the texel buffer (linear RGB, three packed floats a texel).
+// A texture is a run of texels in the texture texel buffer, one 16-byte texel a texture texel
+// (linear RGB in xyz, w unused): one imageLoad reads it, where a storage buffer's three floats
+// took a loop over the lanes each on lavapipe (docs/gpu-design.md, "Texture texels as texel loads").
 //   x = first texel, y = width, z = height, w = unused
 struct TextureInfo {
     uvec4 offsetAndSize;

@@ -520,14 +520,15 @@ TEST_F(CliBadInput, SceneTooLargeForTheDeviceIsRefusedEarly) {
                           "VITRUM_MAX_BUFFER_BYTES=4096");
     EXPECT_EQ(r.exitCode, 0) << r.output;
     // A texture too large for the textures' buffer is refused by its header as the scene loads,
-    // named with its MTL line and its size (32 x 32 x 3 floats); tests/core has the cases.
+    // named with its MTL line and its size (32 x 32 texels of 16 bytes); tests/core has the cases.
     write("wall.pfm", "PF\n32 32\n-1\n" + std::string(32 * 32 * 3 * sizeof(float), '\0'));
     write("wall.mtl", "newmtl a\nshader 2\nKd 1 1 1\nmap_Kd wall.pfm\n");
     write("wall.obj", "mtllib wall.mtl\nusemtl a\nvt 0 0\nvt 1 0\nvt 0 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/2 3/3\n");
-    expectRefused(path("wall.obj") + " --width 16 --height 16",
-                  {path("wall.mtl") + ":4: map_Kd " + path("wall.pfm"), "image of 32x32 pixels does not fit the device",
-                   "needs 12288 bytes", "allows 4096 bytes per storage buffer (VITRUM_MAX_BUFFER_BYTES)"},
-                  "VITRUM_MAX_BUFFER_BYTES=4096");
+    expectRefused(
+        path("wall.obj") + " --width 16 --height 16",
+        {path("wall.mtl") + ":4: map_Kd " + path("wall.pfm"), "image of 32x32 pixels does not fit the device",
+         "needs 16384 bytes", "allows 4096 bytes per texel buffer of 16-byte texels (VITRUM_MAX_BUFFER_BYTES)"},
+        "VITRUM_MAX_BUFFER_BYTES=4096");
 }
 
 }  // namespace

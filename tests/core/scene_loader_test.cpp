@@ -680,22 +680,23 @@ std::string pngWithUndecodableData(std::uint32_t width, std::uint32_t height, st
            chunk("IEND", "");
 }
 
-// A render passes its device's storage-buffer limit for the scene's textures (app/render_command.cpp):
+// A render passes its device's texel-buffer limit for the scene's textures (app/render_command.cpp):
 // an image beyond what the images before it leave is refused by its header, before it is decoded,
 // naming the MTL line or the background and the limit. An image that cannot be read still only warns.
 TEST(SceneMtl, TexturesBeyondTheTexelLimitAreRefusedByTheirHeaders) {
     fs::path dir = tempDir();
-    write(dir / "small.pfm", blackPfm(4, 4));  // 192 bytes as the scene holds it
-    write(dir / "large.pfm", blackPfm(8, 8));  // 768 bytes
+    write(dir / "small.pfm", blackPfm(4, 4));  // 256 bytes as the device holds it (16 a pixel)
+    write(dir / "large.pfm", blackPfm(8, 8));  // 1024 bytes
     write(dir / "t.mtl", "newmtl a\nmap_Kd small.pfm\nnewmtl b\nmap_Kd large.pfm\n");
     write(dir / "t.obj",
           "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl a\nf 1/1 2/1 3/1\nusemtl b\nf 1/1 3/1 2/1\n");
-    const TexelLimit limit{959, "the test's device allows 959 bytes"};
-    EXPECT_EQ(loadScene(dir / "t.obj", {TexelLimit{960, "960"}}).textures.size(), 2u);  // 192 + 768 fit 960
-    expectInputError([&] { loadScene(dir / "t.obj", {limit}); },
-                     {"t.mtl:4: map_Kd", "large.pfm: image of 8x8 pixels does not fit the device",
-                      "it needs 768 bytes as linear RGB float, but the test's device allows 959 bytes",
-                      "the scene's images before this one take 192 bytes"});
+    const TexelLimit limit{1279, "the test's device allows 1279 bytes"};
+    EXPECT_EQ(loadScene(dir / "t.obj", {TexelLimit{1280, "1280"}}).textures.size(), 2u);  // 256 + 1024 fit 1280
+    expectInputError(
+        [&] { loadScene(dir / "t.obj", {limit}); },
+        {"t.mtl:4: map_Kd", "large.pfm: image of 8x8 pixels does not fit the device",
+         "it needs 1024 bytes as linear RGB float texels of 16 bytes, but the test's device allows 1279 bytes",
+         "the scene's images before this one take 256 bytes"});
 
     // 4000 x 4000 pixels declared over 4 KB of data that does not inflate.
     write(dir / "f.mtl", "newmtl a\nshader 2\nmap_Kd forged.png\n");
@@ -704,18 +705,24 @@ TEST(SceneMtl, TexturesBeyondTheTexelLimitAreRefusedByTheirHeaders) {
     const int before = warningCount();
     EXPECT_EQ(loadScene(dir / "f.obj").textures.size(), 0u);  // decoding it fails: a warning
     EXPECT_EQ(warningCount(), before + 1);
-    expectInputError([&] { loadScene(dir / "f.obj", {TexelLimit{1 << 20, "1 MiB"}}); },
-                     {"f.mtl:3: map_Kd", "forged.png: image of 4000x4000 pixels does not fit the device",
-                      "184 MiB"});  // 4000 * 4000 * 12 bytes, rounded up
+    expectInputError(
+        [&] {
+            loadScene(dir / "f.obj", {TexelLimit{1 << 20, "1 MiB"}});
+        },
+        {"f.mtl:3: map_Kd", "forged.png: image of 4000x4000 pixels does not fit the device",
+         "245 MiB"});  // 4000 * 4000 * 16 bytes, rounded up
 
     // Environment maps count as textures: the sixth face of a cube finds five before it.
     write(dir / "s.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     write(dir / "cube.json", R"({"objects": [{"obj": "s.obj"}], "background": {"cube": )"
                              R"(["small.pfm", "small.pfm", "small.pfm", "small.pfm", "small.pfm", "small.pfm"]}})");
-    EXPECT_EQ(loadScene(dir / "cube.json", {TexelLimit{1152, "1152"}}).textures.size(), 6u);
-    expectInputError([&] { loadScene(dir / "cube.json", {TexelLimit{1151, "1151 bytes"}}); },
-                     {"cube.json", "small.pfm: image of 4x4 pixels does not fit the device",
-                      "images before this one take 960 bytes"});
+    EXPECT_EQ(loadScene(dir / "cube.json", {TexelLimit{1536, "1536"}}).textures.size(), 6u);
+    expectInputError(
+        [&] {
+            loadScene(dir / "cube.json", {TexelLimit{1535, "1535 bytes"}});
+        },
+        {"cube.json", "small.pfm: image of 4x4 pixels does not fit the device",
+         "images before this one take 1280 bytes"});
     write(dir / "sphere.json", R"({"objects": [{"obj": "s.obj"}], "background": {"spherical": "forged.png"}})");
     expectInputError([&] { loadScene(dir / "sphere.json", {TexelLimit{1 << 20, "1 MiB"}}); },
                      {"sphere.json", "forged.png: image of 4000x4000 pixels does not fit the device"});
