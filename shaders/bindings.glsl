@@ -71,16 +71,16 @@ mat3 loadVertexNormals(uint i) {
                 fetchVec4(shadingTexels, texel.z, 0u).xyz);
 }
 
-// A triangle's texture coordinates at its three corners; zero where its material has no texture,
-// which then reads none.
-void loadCornerUvs(uint i, out vec2 uv0, out vec2 uv1, out vec2 uv2) {
+// A triangle's texture coordinates at barycentrics (u, v) of its corners v1 and v2, interpolated
+// as the hit point is (the CPU reference's uvAt); zero where its material has no texture or
+// cut-outs, which then read none.
+vec2 interpolatedUv(uint i, vec2 barycentrics) {
     uint first = imageLoad(shadingTexels, int(i)).w;
     bool stored = first != kFlatTriangle && first != kNoCornerUvs;
     vec4 uv0uv1 = stored ? fetchVec4(shadingTexels, first, 0u) : vec4(0.0);
     vec4 third = stored ? fetchVec4(shadingTexels, first, 1u) : vec4(0.0);
-    uv0 = uv0uv1.xy;
-    uv1 = uv0uv1.zw;
-    uv2 = third.xy;
+    float w0 = 1.0 - barycentrics.x - barycentrics.y;
+    return w0 * uv0uv1.xy + barycentrics.x * uv0uv1.zw + barycentrics.y * third.xy;
 }
 
 GpuMaterial loadMaterial(uint i) {

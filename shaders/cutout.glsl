@@ -13,11 +13,8 @@
 
 // Whether triangle `triangle` (marked `mark`) is cut away at barycentrics (u, v) of v1 and v2.
 bool cutAway(uint triangle, uint mark, vec2 barycentrics) {
-    vec2 uv0, uv1, uv2;
-    loadCornerUvs(triangle, uv0, uv1, uv2);
-    // As shading.glsl interpolates a hit's uv, and reads the texture at (u, 1 - v), wrapping.
-    float w0 = 1.0 - barycentrics.x - barycentrics.y;
-    vec2 uv = w0 * uv0 + barycentrics.x * uv1 + barycentrics.y * uv2;
+    // As shading.glsl reads map_Kd: at (u, 1 - v), wrapping.
+    vec2 uv = interpolatedUv(triangle, barycentrics);
     return sampleTexture(mark & ~kTriangleCutout, vec2(uv.x, 1.0 - uv.y), true, true).x < 1.0;
 }
 

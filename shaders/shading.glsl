@@ -150,11 +150,7 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
     st.hit.material = floatBitsToUint(tri.v0.w);
     st.hit.geometricNormal = geometricNormal;
     st.hit.object = object;
-    if (kTextures) {  // only texture lookups read them
-        vec2 uv0, uv1, uv2;
-        loadCornerUvs(triangle, uv0, uv1, uv2);
-        st.hit.uv = w0 * uv0 + bary.x * uv1 + bary.y * uv2;
-    }
+    if (kTextures) st.hit.uv = interpolatedUv(triangle, bary);  // only texture lookups read it
 
     uint model = materialModel(m);
     if (glass) {

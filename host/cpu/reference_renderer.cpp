@@ -71,6 +71,14 @@ std::vector<gpu::TriangleVertices> markedVertices(const Scene& scene, const Bvh&
     return vertices;
 }
 
+// A triangle's texture coordinates at barycentrics (u, v) of its corners v1 and v2, interpolated
+// as the hit point is (the kernels' interpolatedUv).
+template <class Real>
+glm::vec<2, Real> uvAt(const Triangle& tri, Real u, Real v) {
+    const Real w0 = Real(1) - u - v;
+    return w0 * glm::vec<2, Real>(tri.uv[0]) + u * glm::vec<2, Real>(tri.uv[1]) + v * glm::vec<2, Real>(tri.uv[2]);
+}
+
 // Where a marked triangle is cut away (Material::cutout): its texture at the hit's uv, read as
 // map_Kd is (diffuseColour), below 1.
 class ReferenceCutouts final : public Cutouts {
@@ -86,10 +94,7 @@ public:
 private:
     template <class Real>
     bool cut(std::uint32_t triangle, std::uint32_t mark, Real u, Real v) const {
-        const Triangle& tri = scene_.triangles[bvh_.triangleOrder[triangle]];
-        const Real w0 = Real(1) - u - v;
-        const glm::vec<2, Real> uv =
-            w0 * glm::vec<2, Real>(tri.uv[0]) + u * glm::vec<2, Real>(tri.uv[1]) + v * glm::vec<2, Real>(tri.uv[2]);
+        const glm::vec<2, Real> uv = uvAt(scene_.triangles[bvh_.triangleOrder[triangle]], u, v);
         const Texture& texture = scene_.textures[mark & ~gpu::kTriangleCutout];
         return sampling::sampleTexture<Real>(texture, uv.x, Real(1) - uv.y, scene_.settings.filter,
                                              sampling::Address::Wrap, sampling::Address::Wrap)
@@ -260,8 +265,7 @@ private:
                                   ? edgeCross / crossLength
                                   : (shadingValid ? interpolated / length : -direction);
         hit.shadingNormal = shadingValid ? interpolated / length : hit.geometricNormal;
-        hit.uv = w0 * glm::vec<2, Real>(tri.uv[0]) + found.u * glm::vec<2, Real>(tri.uv[1]) +
-                 found.v * glm::vec<2, Real>(tri.uv[2]);
+        hit.uv = uvAt(tri, found.u, found.v);
         hit.material = &scene_.materials[tri.material];
         hit.object = objectOf(found);
         return hit;

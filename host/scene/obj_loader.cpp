@@ -509,24 +509,20 @@ const ObjLoader::Library& ObjLoader::library(const fs::path& mtlFile) {
             continue;
         }
         Material material = materialFromMtl(entry, mtlFile);
-        if (entry.mapKd) {
-            std::string name = *entry.mapKd;
-            std::replace(name.begin(), name.end(), '\\', '/');  // Windows exporters write backslashes
-            material.diffuseTexture =
-                texture(mtlFile.parent_path() / name, mtlFile, entry.mapKdLine, "map_Kd", "texture", "using Kd instead",
-                        [](Image& image) { return std::move(image.pixels); });
-        }
-        if (entry.mapD) {
-            std::string name = *entry.mapD;
+        // An image the MTL names, relative to it; Windows exporters write backslashes.
+        auto imageFile = [&](std::string name) {
             std::replace(name.begin(), name.end(), '\\', '/');
-            if (material.model == MaterialModel::Glass)
-                warn(mtlFile.string() + ":" + std::to_string(entry.mapDLine) +
-                     ": map_d of a glass volume ignored (its "
-                     "closed surface bounds its medium)");
-            else
-                material.cutout = texture(mtlFile.parent_path() / name, mtlFile, entry.mapDLine, "map_d", "mask",
-                                          "the surface is not cut", cutoutTexels);
-        }
+            return mtlFile.parent_path() / name;
+        };
+        if (entry.mapKd)
+            material.diffuseTexture = texture(imageFile(*entry.mapKd), mtlFile, entry.mapKdLine, "map_Kd", "texture",
+                                              "using Kd instead", [](Image& image) { return std::move(image.pixels); });
+        if (entry.mapD && material.model == MaterialModel::Glass)
+            warn(mtlFile.string() + ":" + std::to_string(entry.mapDLine) +
+                 ": map_d of a glass volume ignored (its closed surface bounds its medium)");
+        else if (entry.mapD)
+            material.cutout = texture(imageFile(*entry.mapD), mtlFile, entry.mapDLine, "map_d", "mask",
+                                      "the surface is not cut", cutoutTexels);
         library[entry.name] = std::uint32_t(scene_.materials.size());
         scene_.materials.push_back(std::move(material));
     }

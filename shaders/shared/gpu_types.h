@@ -131,8 +131,8 @@ struct GpuMaterial {
 };
 
 // A texture is a run of texels in the texture texel buffer, one 16-byte texel a texture texel
-// (linear RGB in xyz, w unused): one imageLoad reads it, where a storage buffer's three floats
-// took a loop over the lanes each on lavapipe (docs/gpu-design.md, "Texture texels as texel loads").
+// (linear RGB in xyz, w unused), so that one imageLoad reads it (docs/gpu-design.md, "Texture
+// texels as texel loads").
 //   x = first texel, y = width, z = height, w = unused
 struct TextureInfo {
     uvec4 offsetAndSize;

@@ -27,7 +27,7 @@ glm::uvec3 bitsOf(const glm::vec3& v) {
     return {std::bit_cast<std::uint32_t>(v.x), std::bit_cast<std::uint32_t>(v.y), std::bit_cast<std::uint32_t>(v.z)};
 }
 
-// bindings.glsl's loadVertexNormals and loadCornerUvs, on the host.
+// bindings.glsl's loadVertexNormals and interpolatedUv's reads, on the host.
 struct Decoded {
     glm::vec3 normal[3];
     glm::vec2 uv[3];

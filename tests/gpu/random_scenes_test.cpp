@@ -252,12 +252,18 @@ private:
         scene.materials[std::uniform_int_distribution<std::size_t>(0, scene.materials.size() - 1)(rng_)]
             .diffuseTexture = int(scene.textures.size());
         scene.textures.push_back(randomTexture(side, side));
+        uvsFromPositions(scene);
+    }
+
+    // Texture coordinates that follow the triangles' positions, so that a texture repeats a few
+    // times across an object.
+    static void uvsFromPositions(Scene& scene) {
         for (Triangle& t : scene.triangles)
             for (int k = 0; k < 3; ++k) t.uv[k] = 0.7f * glm::vec2(t.position[k].x + t.position[k].z, t.position[k].y);
     }
 
     // A random grey texture of 2 to 5 texels a side, from 0 to 2, cutting one material that is
-    // not a glass volume (if there is one); the triangles' texture coordinates as addTexture's.
+    // not a glass volume (if there is one); the triangles' texture coordinates as addTexture gives them.
     void addCutout(Scene& scene) {
         std::vector<std::size_t> candidates;
         for (std::size_t i = 0; i < scene.materials.size(); ++i)
@@ -270,8 +276,7 @@ private:
         for (int i = 0; i < side * side; ++i) texture.texels.push_back(vec3(uniform(0, 2)));
         scene.materials[material].cutout = int(scene.textures.size());
         scene.textures.push_back(std::move(texture));
-        for (Triangle& t : scene.triangles)
-            for (int k = 0; k < 3; ++k) t.uv[k] = 0.7f * glm::vec2(t.position[k].x + t.position[k].z, t.position[k].y);
+        uvsFromPositions(scene);
         drawn_ += ", material " + std::to_string(material) + " cut out";
     }
 
