@@ -86,7 +86,8 @@ vec2 interpolatedUv(uint i, vec2 barycentrics) {
 GpuMaterial loadMaterial(uint i) {
     uint first = kGpuMaterialTexels * i;
     return GpuMaterial(fetchVec4(materialTexels, first, 0u), fetchVec4(materialTexels, first, 1u),
-                       fetchVec4(materialTexels, first, 2u), fetchVec4(materialTexels, first, 3u));
+                       fetchVec4(materialTexels, first, 2u), fetchVec4(materialTexels, first, 3u),
+                       fetchVec4(materialTexels, first, 4u));
 }
 
 GpuLight loadLight(uint i) {

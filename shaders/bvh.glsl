@@ -170,6 +170,9 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
     // the traversal is over and it lies within e of the nearest hit, it is the hit
     // (st.candidates.leaving).
     bool collectLeaving = kCoincidentOpaque && mode == kTraverseClosest && coincidentOpaqueOn();
+    // A ray going on through a partly covered surface passes by the partly covered triangles it
+    // meets before st.ray.weight.w, where it crosses the surface it started at (coverSurface).
+    float passCovered = kPartialCoverage && mode == kTraverseClosest ? st.ray.weight.w : 0.0;
     // Boxes and candidates are tested up to tMax + reach.
     float reach = collectTouching || collectContact || collectLeaving ? touchingDistance() : 0.0;
     uvec4 touchingObjects = st.candidates.touchingObjects;
@@ -273,6 +276,7 @@ bool traverse(uint mode, bool tracing, inout uint steps, uint budget) {
             // A hit in a cut-out part is no hit of any kind (cutout.glsl).
             uint mark = floatBitsToUint(tri.v2.w);
             if (kCutouts && candidate && (mark & kTriangleCutout) != 0u) candidate = !cutAway(triangle, mark, hit.yz);
+            if (kPartialCoverage && candidate && hit.x < passCovered && (mark & kTriangleCovered) != 0u) candidate = false;
             if (candidate) {
                 bool glass = mark == kTriangleGlass;
                 if (collectTouching && glass) {

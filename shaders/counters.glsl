@@ -27,27 +27,27 @@ TraceCounters noCounters() {
 // subgroup takes a few vector operations, not one a counter.
 struct StatisticSums {
     uvec4 v0, v1, v2, v3, v4;
-    uvec2 v5;
+    uvec3 v5;
 };
 
-const StatisticSums kNoStatistics = StatisticSums(uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u), uvec2(0u));
+const StatisticSums kNoStatistics = StatisticSums(uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u), uvec4(0u), uvec3(0u));
 
-// The packing below is written for 22 sums and 3 maxima: a list of another length stops the build.
-const uint kStatisticsPacked[kStatFirstMax == 22u && kStatCount == 25u ? 1 : -1] = uint[](0u);
+// The packing below is written for 23 sums and 3 maxima: a list of another length stops the build.
+const uint kStatisticsPacked[kStatFirstMax == 23u && kStatCount == 26u ? 1 : -1] = uint[](0u);
 
 StatisticSums sumsOf(TraceCounters c) {
     uint v[kStatCount];
 #define VITRUM_COUNTER_VALUE(index, name, combine, group, key, measured) v[index] = c.name;
     VITRUM_TRACE_STATISTICS(VITRUM_COUNTER_VALUE)
     return StatisticSums(uvec4(v[0], v[1], v[2], v[3]), uvec4(v[4], v[5], v[6], v[7]), uvec4(v[8], v[9], v[10], v[11]),
-                         uvec4(v[12], v[13], v[14], v[15]), uvec4(v[16], v[17], v[18], v[19]), uvec2(v[20], v[21]));
+                         uvec4(v[12], v[13], v[14], v[15]), uvec4(v[16], v[17], v[18], v[19]), uvec3(v[20], v[21], v[22]));
 }
 
 uvec3 maximaOf(TraceCounters c) {
     uint v[kStatCount];
     VITRUM_TRACE_STATISTICS(VITRUM_COUNTER_VALUE)
 #undef VITRUM_COUNTER_VALUE
-    return uvec3(v[22], v[23], v[24]);
+    return uvec3(v[23], v[24], v[25]);
 }
 
 #endif

@@ -15,7 +15,7 @@
 bool cutAway(uint triangle, uint mark, vec2 barycentrics) {
     // As shading.glsl reads map_Kd: at (u, 1 - v), wrapping.
     vec2 uv = interpolatedUv(triangle, barycentrics);
-    return sampleTexture(mark & ~kTriangleCutout, vec2(uv.x, 1.0 - uv.y), true, true).x < 1.0;
+    return sampleTexture(mark & kTriangleCutoutTexture, vec2(uv.x, 1.0 - uv.y), true, true).x < 1.0;
 }
 
 #endif

@@ -42,9 +42,10 @@ bool gLoad = false;
 // A pending ray in the buffer. On lavapipe each member moved is a loop over the lanes, so with a
 // medium stack of one the ray's medium travels in its weight's unused .w (a child's weight.w is
 // 0, and media beyond the first are 0): three members, not four (docs/gpu-design.md, "Three
-// members a pending ray with a medium stack of one").
+// members a pending ray with a medium stack of one). Not where some surface is partly there:
+// there a ray going on through one carries its window in weight.w (shading.glsl's coverSurface).
 void storePendingRay(uint index, PendingRay r) {
-    if (kMediumStackDepth > 1u) {
+    if (kMediumStackDepth > 1u || kPartialCoverage) {
         pendingRays[index] = r;
         return;
     }
@@ -54,7 +55,7 @@ void storePendingRay(uint index, PendingRay r) {
 }
 
 PendingRay readPendingRay(uint index) {
-    if (kMediumStackDepth > 1u) return pendingRays[index];
+    if (kMediumStackDepth > 1u || kPartialCoverage) return pendingRays[index];
     PendingRay r;
     r.origin = pendingRays[index].origin;
     r.direction = pendingRays[index].direction;

@@ -32,7 +32,7 @@ void startPrimaryRay(uvec2 pixel) {
     st.ray.origin = vec4(offsetRayOrigin(cameraPosition(), behind ? -n : n), uintBitsToFloat(0u));
     uint media = behind ? cameraMediaBehindCount() : cameraMediaCount();
     st.ray.direction = vec4(d, uintBitsToFloat(usesMaterial(kMaterialGlass) ? media : 0u));
-    st.ray.weight = vec4(1.0);
+    st.ray.weight = vec4(1.0, 1.0, 1.0, 0.0);  // .w: no partly covered surface to pass by
     st.ray.media = behind ? params.cameraMediaBehind : params.cameraMedia;  // innermost last
     st.ray.weight.xyz *= skippedTransmittance(st.ray, cameraPosition());
     st.pendingRays = 0u;

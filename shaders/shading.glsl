@@ -78,6 +78,64 @@ bool splitsAt(uint object, uvec4 touching) {
            (touching.w > 2u && objectDispersion(objects.z) != 0.0);
 }
 
+// Whether a child of st.ray at `depth` with path weight `weight` is traced; a limit that stops
+// it is counted.
+bool admitChild(uint depth, vec3 weight) {
+    if (depth >= maxDepth()) {
+        counters.depthLimitHits += 1u;
+        return false;
+    }
+    // A wavelength sample's weight may be negative in a channel (outside sRGB's gamut): its size
+    // is what min_weight compares (render-model-decisions.md, "Dispersion").
+    if (all(lessThan(kDispersion ? abs(weight) : weight, vec3(minWeight())))) {
+        counters.weightCuts += 1u;
+        return false;
+    }
+    return true;
+}
+
+PendingRay childRay(vec3 origin, vec3 direction, vec3 weight, uvec4 media, uint count, uint depth) {
+    PendingRay r;
+    // A child keeps its parent's wavelength (never the mark of samples waiting).
+    r.origin = vec4(origin, uintBitsToFloat(depth | (wavelengthCode(st.ray) << kWavelengthShift)));
+    r.direction = vec4(direction, uintBitsToFloat(count));
+    r.weight = vec4(weight, 0.0);
+    r.media = media;
+    return r;
+}
+
+// Partial coverage (glTF's alphaMode BLEND; Material::coverage): at an opaque hit, alpha of the
+// surface is there, read from its coverage texture as map_Kd is. Its shading takes alpha of the
+// ray's weight; the rest goes on through it, undeviated, as a child at depth + 1 that waits on the
+// pending rays as a thin glass's transmission does (render-model-decisions.md, "Partial
+// coverage"; the CPU reference's shadeOpaque). The child starts on the ray's side of the surface,
+// so that a surface lying on this one is met beyond it, and passes partly covered triangles by
+// until twice where it crosses this one's plane (its weight.w, which bvh.glsl's traversal reads).
+void coverSurface(GpuMaterial m) {
+    uint texture = floatBitsToUint(m.coverage.x);
+    if (texture == kNoTexture) return;
+    float alpha = sampleTexture(texture, vec2(st.hit.uv.x, 1.0 - st.hit.uv.y), true, true).x;
+    alpha = min(max(alpha, 0.0), 1.0);
+    vec3 passing = st.ray.weight.xyz * (1.0 - alpha);
+    uint depth = rayDepth(st.ray);
+    if (alpha < 1.0 && admitChild(depth + 1u, passing)) {
+        if (st.pendingRays >= kPendingRayCapacity) {
+            counters.rayStackOverflows += 1u;  // dropped, never silently
+        } else {
+            vec3 d = st.ray.direction.xyz;
+            vec3 n = st.hit.geometricNormal;  // facing the ray
+            vec3 origin = offsetRayOrigin(st.hit.position, n);
+            PendingRay through = childRay(origin, d, passing, st.ray.media, mediaCount(st.ray), depth + 1u);
+            through.weight.w = 2.0 * (ieeeDot(origin - st.hit.position, n) / -ieeeDot(d, n));
+            through.weight.xyz *= skippedTransmittance(through, st.hit.position);
+            storePendingRay(pendingRayIndex(st.pendingRays), through);
+            st.pendingRays += 1u;
+            counters.passThroughRays += 1u;
+        }
+    }
+    st.ray.weight.xyz *= alpha;
+}
+
 // The closest-hit traversal of st.ray is over: record the hit (triangle `tri`, material `m`, both
 // read by traceUnit) or take the background.
 void finishTrace(TriangleVertices tri, GpuMaterial m) {
@@ -169,6 +227,7 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
         st.phase = kPhaseNextRay;
         return;
     }
+    if (kPartialCoverage) coverSurface(m);
     st.light = 0u;
     bool scatters = (usesMaterial(kMaterialMirror) && model == kMaterialMirror) ||
                     (usesMaterial(kMaterialThinGlass) && model == kMaterialThinGlass);  // neither is lit
@@ -230,32 +289,6 @@ void finishShadow() {
     st.phase = kPhaseNextLight;
 }
 
-// Whether a child of st.ray at `depth` with path weight `weight` is traced; a limit that stops
-// it is counted.
-bool admitChild(uint depth, vec3 weight) {
-    if (depth >= maxDepth()) {
-        counters.depthLimitHits += 1u;
-        return false;
-    }
-    // A wavelength sample's weight may be negative in a channel (outside sRGB's gamut): its size
-    // is what min_weight compares (render-model-decisions.md, "Dispersion").
-    if (all(lessThan(kDispersion ? abs(weight) : weight, vec3(minWeight())))) {
-        counters.weightCuts += 1u;
-        return false;
-    }
-    return true;
-}
-
-PendingRay childRay(vec3 origin, vec3 direction, vec3 weight, uvec4 media, uint count, uint depth) {
-    PendingRay r;
-    // A child keeps its parent's wavelength (never the mark of samples waiting).
-    r.origin = vec4(origin, uintBitsToFloat(depth | (wavelengthCode(st.ray) << kWavelengthShift)));
-    r.direction = vec4(direction, uintBitsToFloat(count));
-    r.weight = vec4(weight, 0.0);
-    r.media = media;
-    return r;
-}
-
 // Whether any material of this build spawns reflected or refracted rays.
 bool spawnsRays() {
     return usesMaterial(kMaterialPhong) || usesMaterial(kMaterialMirror) || usesMaterial(kMaterialGlass) ||
@@ -267,7 +300,7 @@ bool spawnsRays() {
 // mirror, a Phong surface with Schlick's weight, glass or thin glass), or through an
 // index-matched glass interface the same ray with the new medium stack; only a glass hit's
 // refraction (a thin glass's transmission) waits on the pending-ray stack, so it has one store
-// site (docs/gpu-design.md, "The ray tree"). The materials share one reflection, from the
+// site here (docs/gpu-design.md, "The ray tree"; the other is coverSurface's). The materials share one reflection, from the
 // normals on the incoming ray's side: lavapipe runs every material's code every round
 // (docs/gpu-design.md, "One shading round, fewer copies of its code").
 void scatter(GpuMaterial m) {

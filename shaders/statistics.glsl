@@ -28,7 +28,7 @@ void addSums(inout StatisticSums total, StatisticSums sums) {
 }
 
 uint statisticAt(StatisticSums s, uint index) {
-    if (index >= 20u) return s.v5[index & 1u];
+    if (index >= 20u) return s.v5[index - 20u];
     uvec4 v = index < 4u ? s.v0 : (index < 8u ? s.v1 : (index < 12u ? s.v2 : (index < 16u ? s.v3 : s.v4)));
     return v[index & 3u];
 }

@@ -34,8 +34,10 @@ const bool kCoincidentOpaque = false;
 const bool kInstancing = false;
 const bool kResumable = false;
 const bool kFullSubgroups = true;
-// The benchmark's scenes have no cut-out surfaces (shaders/cutout.glsl).
+// The benchmark's scenes have no cut-out or partly covered surfaces (shaders/cutout.glsl,
+// shading.glsl's coverSurface).
 const bool kCutouts = false;
+const bool kPartialCoverage = false;
 bool cutAway(uint triangle, uint mark, vec2 barycentrics) { return false; }
 RenderParams params;
 #include "render_params.glsl"

@@ -162,10 +162,13 @@ std::set<std::uint32_t> opaqueObjectsMetFromBehind(const Scene& scene, const std
     auto isGlass = [&](const Triangle& t) { return scene.materials[t.material].model == MaterialModel::Glass; };
     std::map<std::uint32_t, std::vector<const Triangle*>> opaque;
     // Rays pass through the walls of an object with glass triangles, thin glass included (whose
-    // triangles the rules take as opaque: a wall of no thickness has no inside).
-    std::set<std::uint32_t> withGlass;
+    // triangles the rules take as opaque: a wall of no thickness has no inside), cut-out parts or
+    // partly covered surfaces.
+    std::set<std::uint32_t> passable;
     for (const Triangle& t : scene.triangles) {
-        if (isGlass(t) || scene.materials[t.material].model == MaterialModel::ThinGlass) withGlass.insert(t.object);
+        const Material& m = scene.materials[t.material];
+        if (isGlass(t) || m.model == MaterialModel::ThinGlass || hasCutouts(m) || hasPartialCoverage(m))
+            passable.insert(t.object);
         if (!isGlass(t)) opaque[t.object].push_back(&t);
     }
     const std::set<std::uint32_t> open = openObjects(scene, [&](const Triangle& t) { return !isGlass(t); });
@@ -179,7 +182,7 @@ std::set<std::uint32_t> opaqueObjectsMetFromBehind(const Scene& scene, const std
         for (const Triangle* t : triangles)
             volume += glm::dot(glm::dvec3(t->position[0]) - corner,
                                glm::cross(glm::dvec3(t->position[1]) - corner, glm::dvec3(t->position[2]) - corner));
-        bool met = withGlass.count(object) || open.count(object) || !(volume > 0.0);
+        bool met = passable.count(object) || open.count(object) || !(volume > 0.0);
         for (const glm::dvec3& start : rayStarts) met = met || windingNumber(triangles, start) > 0.5;
         if (met) metFromBehind.insert(object);
     }
@@ -208,6 +211,8 @@ SceneFeatures analyseScene(const Scene& scene, std::size_t flatAnalysisTriangles
     for (std::uint32_t index : used) {
         const Material& m = scene.materials[index];
         if (hasCutouts(m)) f.cutouts = true;
+        // A partly covered surface's rays go on through it as children, read at its uv.
+        if (hasPartialCoverage(m)) f.partialCoverage = f.reflection = f.textures = true;
         switch (m.model) {
             case MaterialModel::Glass:
                 f.glass = f.reflection = true;
@@ -299,7 +304,8 @@ SceneFeatures analyseScene(const Scene& scene, std::size_t flatAnalysisTriangles
 
     const std::uint32_t maxDepth = scene.settings.maxDepth;
     // Dispersion: a split ray's samples wait as one pending entry below its subtree (trace.comp).
-    const bool refracts = f.glass || f.uses(MaterialModel::ThinGlass);
+    // A partly covered surface's pass-through waits as a refraction does.
+    const bool refracts = f.glass || f.uses(MaterialModel::ThinGlass) || f.partialCoverage;
     f.rayStackDepth = refracts ? std::min<std::uint32_t>(gpu::kRayStackSize,
                                                          (maxDepth > 0 ? maxDepth - 1 : 0) + (f.dispersion ? 1 : 0))
                                : 0;
@@ -330,6 +336,7 @@ std::vector<std::string> SceneFeatures::describe() const {
         std::string("dispersion (wavelength samples): ") + yesNo(dispersion),
         std::string("tinted glass surfaces: ") + yesNo(glassTints),
         std::string("cut-out surfaces (alpha masks): ") + yesNo(cutouts),
+        std::string("partly covered surfaces (alpha blending): ") + yesNo(partialCoverage),
         std::string("touching glass surfaces possible: ") + yesNo(touchingMediaPossible),
         std::string("glass resting on opaque surfaces possible: ") + yesNo(opaqueContactPossible),
         std::string("coincident opaque surfaces of two objects possible: ") + yesNo(coincidentOpaquePossible),
@@ -354,6 +361,7 @@ nlohmann::json toJson(const SceneFeatures& f) {
         {"dispersion", f.dispersion},
         {"glass_tints", f.glassTints},
         {"cutouts", f.cutouts},
+        {"partial_coverage", f.partialCoverage},
         {"touching_media_possible", f.touchingMediaPossible},
         {"opaque_contact_possible", f.opaqueContactPossible},
         {"coincident_opaque_possible", f.coincidentOpaquePossible},

@@ -37,6 +37,9 @@ struct SceneFeatures {
     // Some surface has cut-out parts (Material::cutout, glTF's alphaMode MASK): both traversals
     // test its hits against its texture (render-model-decisions.md, "Cut-out surfaces").
     bool cutouts = false;
+    // Some opaque surface is partly there (Material::coverage, glTF's alphaMode BLEND): its hits
+    // send a ray on through it (render-model-decisions.md, "Partial coverage").
+    bool partialCoverage = false;
     // Two triangles of different glass objects that may lie within twice the touching distance
     // of each other (analysis/glass_proximity.h): only then can a touching probe find anything, so
     // otherwise neither backend probes. Nested objects apart from each other need no probe.
@@ -53,9 +56,9 @@ struct SceneFeatures {
     // leaves through (a box standing on another, seen from inside; render-model-decisions.md,
     // "Coincident opaque surfaces").
     bool coincidentOpaquePossible = false;
-    bool reflection = false;             // opaque dielectrics, mirrors or glass spawn reflected rays
+    bool reflection = false;             // some material spawns secondary rays (reflected, refracted, passing)
     bool shadowRays = false;             // lights and materials that use them (Lambert, Phong)
-    bool textures = false;               // some material samples map_Kd
+    bool textures = false;               // some material samples a texture at a hit (map_Kd, coverage)
     BackgroundKind background = BackgroundKind::Constant;
     std::uint32_t glassObjects = 0;
     // Surfaces of different objects closer than this along a ray touch: kTouchingTolerance times
@@ -79,8 +82,9 @@ struct SceneFeatures {
     // normal points to, and cameraMediaBehind those of the other side; else the two are the same.
     std::vector<std::uint32_t> cameraMedia;
     std::vector<std::uint32_t> cameraMediaBehind;
-    // Pending rays of a depth-first ray tree: only refractions wait (the reflection of a hit is
-    // traced at once), so 0 without glass or thin glass, else max_depth - 1 (docs/gpu-design.md shows why that
+    // Pending rays of a depth-first ray tree: only refractions and rays through partly covered
+    // surfaces wait (the reflection of a hit is traced at once), so 0 without glass, thin glass or
+    // partial coverage, else max_depth - 1 (docs/gpu-design.md shows why that
     // suffices), capped at gpu::kRayStackSize.
     std::uint32_t rayStackDepth = 0;
     // The max_depth beyond which nothing changes: 1 (primary rays only, a tree of depth 0) without
@@ -112,9 +116,9 @@ std::string openGlassWarning(const Scene& scene, const SceneFeatures& features);
 // The objects with opaque triangles that a ray may meet from behind (render-model-decisions.md,
 // "Coincident opaque surfaces"): those whose opaque triangles are not a closed, consistently wound
 // mesh with outward normals (an open sheet, a mesh wound inward), those that also have glass
-// triangles or are of thin glass (rays come in through them; thin glass counts as opaque in the
-// rules), and those around one of `rayStarts` (where primary rays
-// start). A ray meets the opaque triangles of any other object from the front only.
+// triangles, are of thin glass or have cut-out or partly covered surfaces (rays come in through
+// them; thin glass counts as opaque in the rules), and those around one of `rayStarts` (where
+// primary rays start). A ray meets the opaque triangles of any other object from the front only.
 std::set<std::uint32_t> opaqueObjectsMetFromBehind(const Scene& scene, const std::vector<glm::dvec3>& rayStarts);
 
 // Length of the diagonal of the box around every triangle (0 for an empty scene).

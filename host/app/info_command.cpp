@@ -76,6 +76,7 @@ int infoCommand(int argc, char** argv, int first) {
         if (m.model == MaterialModel::Mirror) std::printf("  Ks %.3g %.3g %.3g", m.specular.x, m.specular.y, m.specular.z);
         if (m.diffuseTexture >= 0) std::printf("  map_Kd %s", scene.textures[m.diffuseTexture].path.filename().c_str());
         if (hasCutouts(m)) std::printf("  cutout %s", scene.textures[m.cutout].path.filename().c_str());
+        if (hasPartialCoverage(m)) std::printf("  coverage %s", scene.textures[m.coverage].path.filename().c_str());
         std::printf("\n");
     }
     // What the scene can need (analysis/scene_features.h).

@@ -214,11 +214,14 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
         std::printf("resumable kernel: %llu pixels needed more than one dispatch, restarted (%.3f s to build it)\n",
                     (unsigned long long)stats.restartedPixels, stats.seconds("resumable kernel"));
     std::printf("time: %.3f s rendering, %.3f s in all\n", renderSeconds, totalSeconds);
-    std::printf("rays: %llu (%.2f Mrays/s): %llu primary, %llu shadow, %llu reflection, %llu refraction\n",
+    std::printf("rays: %llu (%.2f Mrays/s): %llu primary, %llu shadow, %llu reflection, %llu refraction",
                 (unsigned long long)stats.totalRays(),
                 renderSeconds > 0 ? double(stats.totalRays()) / renderSeconds * 1e-6 : 0.0,
                 (unsigned long long)stats.primaryRays, (unsigned long long)stats.shadowRays,
                 (unsigned long long)stats.reflectionRays, (unsigned long long)stats.refractionRays);
+    if (stats.passThroughRays > 0)
+        std::printf(", %llu through partly covered surfaces", (unsigned long long)stats.passThroughRays);
+    std::printf("\n");
     if (job) printDistributed(distributed);
     if (stats.loopLimitSuspected || stats.traversalStackOverflows || stats.rayStackOverflows ||
         stats.mediumStackOverflows)

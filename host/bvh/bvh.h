@@ -54,4 +54,12 @@ std::vector<gpu::TriangleVertices> packTriangleVertices(const Bvh& bvh, std::spa
 void packTriangleVertices(const Bvh& bvh, std::span<const Triangle> triangles, std::span<gpu::TriangleVertices> into,
                           std::size_t first = 0);
 
+// The mark a triangle of material `m` carries in its vertices' v2.w, which both traversals read
+// (gpu_types.h, "Triangles"): glass, cut-out parts and their texture, partial coverage.
+inline std::uint32_t traversalMark(const Material& m) {
+    if (m.model == MaterialModel::Glass) return gpu::kTriangleGlass;
+    return (hasCutouts(m) ? gpu::kTriangleCutout | std::uint32_t(m.cutout) : 0u) |
+           (hasPartialCoverage(m) ? gpu::kTriangleCovered : 0u);
+}
+
 }  // namespace vitrum

@@ -113,12 +113,14 @@ bool traverseFrom(std::span<const gpu::BvhNode> nodes, std::span<const gpu::GpuI
     return false;
 }
 
-// Whether a hit of triangle i lies in a cut-out part of it (TraversalInput::cutouts).
+// Whether the ray passes a hit of triangle i by: it lies in a cut-out part of it
+// (TraversalInput::cutouts), or the triangle is partly covered and the ray goes on through such a
+// surface and has not passed it yet (Ray::passCoveredBelow).
 template <class Real>
-bool cutAway(const TraversalInput& bvh, std::uint32_t i, const TriangleHit<Real>& hit) {
-    if (!bvh.cutouts) return false;
+bool passedBy(const TraversalInput& bvh, const Ray<Real>& ray, std::uint32_t i, const TriangleHit<Real>& hit) {
     const std::uint32_t mark = std::bit_cast<std::uint32_t>(bvh.triangles[i].v2.w);
-    return (mark & gpu::kTriangleCutout) != 0 && bvh.cutouts->cutAway(i, mark, hit.u, hit.v);
+    if ((mark & gpu::kTriangleCovered) != 0 && hit.t < ray.passCoveredBelow) return true;
+    return bvh.cutouts && (mark & gpu::kTriangleCutout) != 0 && bvh.cutouts->cutAway(i, mark, hit.u, hit.v);
 }
 
 template <class Real, class OnLeaf>
@@ -189,7 +191,7 @@ std::optional<TriangleHit<Real>> traceClosest(const TraversalInput& bvh, const R
                  for (std::uint32_t i = first; i < first + count; ++i) {
                      if (counters) counters->triangleTests += 1;
                      // tMax shrinks to the closest t: a later hit must be strictly nearer to replace it.
-                     if (auto hit = intersectTriangle(bvh.triangles[i], probe); hit && !cutAway(bvh, i, *hit)) {
+                     if (auto hit = intersectTriangle(bvh.triangles[i], probe); hit && !passedBy(bvh, probe, i, *hit)) {
                          hit->triangle = i;
                          hit->instance = instance;
                          closest = hit;
@@ -210,7 +212,7 @@ bool traceAny(const TraversalInput& bvh, const Ray<Real>& ray, TraversalCounters
              [&](std::uint32_t first, std::uint32_t count, Real&, const Ray<Real>& local, std::uint32_t) {
                  for (std::uint32_t i = first; i < first + count; ++i) {
                      if (counters) counters->triangleTests += 1;
-                     if (auto hit = intersectTriangle(bvh.triangles[i], local); hit && !cutAway(bvh, i, *hit)) {
+                     if (auto hit = intersectTriangle(bvh.triangles[i], local); hit && !passedBy(bvh, local, i, *hit)) {
                          found = true;
                          return true;
                      }
@@ -228,7 +230,7 @@ void traceAll(const TraversalInput& bvh, const Ray<Real>& ray, std::vector<Trian
              [&](std::uint32_t first, std::uint32_t count, Real&, const Ray<Real>& local, std::uint32_t instance) {
                  for (std::uint32_t i = first; i < first + count; ++i) {
                      if (counters) counters->triangleTests += 1;
-                     if (auto hit = intersectTriangle(bvh.triangles[i], local); hit && !cutAway(bvh, i, *hit)) {
+                     if (auto hit = intersectTriangle(bvh.triangles[i], local); hit && !passedBy(bvh, local, i, *hit)) {
                          hit->triangle = i;
                          hit->instance = instance;
                          hits.push_back(*hit);

@@ -20,6 +20,10 @@ struct Ray {
     glm::vec<3, Real> direction;  // need not be unit length; t is in units of it
     Real tMin = Real(0);
     Real tMax = Real(1e30);
+    // A ray going on through a partly covered surface passes by the triangles marked
+    // gpu::kTriangleCovered that it hits below this t, where it crosses the surface it started at
+    // (render-model-decisions.md, "Partial coverage"); 0 for every other ray.
+    Real passCoveredBelow = Real(0);
 };
 
 template <class Real>

@@ -60,14 +60,12 @@ struct TraceCounters : TraceCounts {
     }
 };
 
-// The triangles in BVH order as both traversals read them, with the mark of those whose material
-// has cut-out parts (gpu_types.h, "Triangles").
+// The triangles in BVH order as both traversals read them, marked (gpu_types.h, "Triangles").
 std::vector<gpu::TriangleVertices> markedVertices(const Scene& scene, const Bvh& bvh) {
     std::vector<gpu::TriangleVertices> vertices = packTriangleVertices(bvh, scene.triangles);
-    for (std::size_t i = 0; i < vertices.size(); ++i) {
-        const Material& m = scene.materials[scene.triangles[bvh.triangleOrder[i]].material];
-        if (hasCutouts(m)) vertices[i].v2.w = std::bit_cast<float>(gpu::kTriangleCutout | std::uint32_t(m.cutout));
-    }
+    for (std::size_t i = 0; i < vertices.size(); ++i)
+        vertices[i].v2.w =
+            std::bit_cast<float>(traversalMark(scene.materials[scene.triangles[bvh.triangleOrder[i]].material]));
     return vertices;
 }
 
@@ -95,7 +93,7 @@ private:
     template <class Real>
     bool cut(std::uint32_t triangle, std::uint32_t mark, Real u, Real v) const {
         const glm::vec<2, Real> uv = uvAt(scene_.triangles[bvh_.triangleOrder[triangle]], u, v);
-        const Texture& texture = scene_.textures[mark & ~gpu::kTriangleCutout];
+        const Texture& texture = scene_.textures[mark & gpu::kTriangleCutoutTexture];
         return sampling::sampleTexture<Real>(texture, uv.x, Real(1) - uv.y, scene_.settings.filter,
                                              sampling::Address::Wrap, sampling::Address::Wrap)
                    .x < Real(1);
@@ -134,8 +132,9 @@ public:
         // Another traversal knows the triangles, not vitrum's instances (RayIntersector).
         if (intersector_ && !bvh.instances.empty())
             throw std::invalid_argument("a RayIntersector traces scenes without instances only");
-        if (intersector_ && features.cutouts)
-            throw std::invalid_argument("a RayIntersector traces scenes without cut-out surfaces only");
+        if (intersector_ && (features.cutouts || features.partialCoverage))
+            throw std::invalid_argument(
+                "a RayIntersector traces scenes without cut-out or partly covered surfaces only");
         // Each object's medium's Cauchy B (0 without dispersion), in float as the GPU gets it;
         // the wavelength samples only where some medium disperses.
         for (std::uint32_t material : mediumMaterials_) {
@@ -197,10 +196,12 @@ private:
 
     // Radiance arriving at the ray's origin along direction d (unit). `start` is the un-offset point
     // the ray leaves from (`origin` is offset off its surface); `weight` is the product of the path
-    // factors so far, used only for min_weight; `sample` the ray's wavelength sample, or kWhite.
+    // factors so far, used only for min_weight; `sample` the ray's wavelength sample, or kWhite;
+    // `passCovered` the t below which a ray going on through a partly covered surface passes such
+    // surfaces by (Ray::passCoveredBelow).
     Color trace(const Vec3& start, const Vec3& origin, const Vec3& d, std::uint32_t depth, const MediumStack& media,
-                const Color& weight, int sample, TraceCounters& counters) const {
-        Ray<Real> ray{origin, d, Real(0), std::numeric_limits<Real>::max()};
+                const Color& weight, int sample, TraceCounters& counters, Real passCovered = Real(0)) const {
+        Ray<Real> ray{origin, d, Real(0), std::numeric_limits<Real>::max(), passCovered};
         counters.logRay(ray, false);
         counters.maxRayDepth = std::max<std::uint64_t>(counters.maxRayDepth, depth);
         auto found = closest(ray, counters);
@@ -227,7 +228,7 @@ private:
             Color sum(0);
             for (int k = 0; k < int(samples_.size()); ++k) {
                 const Color share(samples_[std::size_t(k)].weight);
-                sum += share * trace(start, origin, d, depth, media, weight * share, k, counters);
+                sum += share * trace(start, origin, d, depth, media, weight * share, k, counters, passCovered);
             }
             return sum;
         }
@@ -299,6 +300,33 @@ private:
         // Both normals face the incoming ray (render model: "flipped to face the incoming ray").
         if (glm::dot(hit.geometricNormal, d) > Real(0)) hit.geometricNormal = -hit.geometricNormal;
         if (glm::dot(hit.shadingNormal, d) > Real(0)) hit.shadingNormal = -hit.shadingNormal;
+        const Real alpha = coverage(*hit.material, hit.uv);
+        if (alpha == Real(1)) return shadeSurface(hit, d, depth, media, weight, sample, counters);
+        // Partly there (render-model-decisions.md, "Partial coverage"): alpha of the surface's
+        // shading, and 1 - alpha of what lies beyond it, seen undeviated through it.
+        const Color surface = alpha * shadeSurface(hit, d, depth, media, weight * alpha, sample, counters);
+        // From the ray's side of the surface, so that a surface lying on it is met beyond it; it
+        // passes partly covered surfaces by until twice where it crosses this one's plane.
+        const Vec3 origin = offsetRayOrigin(hit.position, hit.geometricNormal, offsetScale_);
+        const Real crossing = glm::dot(origin - hit.position, hit.geometricNormal) / -glm::dot(d, hit.geometricNormal);
+        const Real rest = Real(1) - alpha;
+        return surface + rest * traceChild(hit.position, origin, d, depth, media, weight * rest, Branch::PassThrough,
+                                           sample, counters, Real(2) * crossing);
+    }
+
+    // The share of an opaque surface that is there at uv (Material::coverage), within [0, 1].
+    Real coverage(const Material& m, const glm::vec<2, Real>& uv) const {
+        if (!hasPartialCoverage(m)) return Real(1);
+        const Real alpha =
+            sampling::sampleTexture<Real>(scene_.textures[std::size_t(m.coverage)], uv.x, Real(1) - uv.y,
+                                          scene_.settings.filter, sampling::Address::Wrap, sampling::Address::Wrap)
+                .x;
+        return std::clamp(alpha, Real(0), Real(1));
+    }
+
+    // An opaque surface where it is there, with normals facing the ray.
+    Color shadeSurface(const Hit& hit, const Vec3& d, std::uint32_t depth, const MediumStack& media,
+                       const Color& weight, int sample, TraceCounters& counters) const {
         const Material& m = *hit.material;
         switch (m.model) {
             case MaterialModel::Normal: return (hit.shadingNormal + Real(1)) / Real(2);
@@ -374,14 +402,17 @@ private:
     Color traceReflection(const Hit& hit, const Vec3& d, std::uint32_t depth, const MediumStack& media,
                           const Color& weight, int sample, TraceCounters& counters) const {
         const Vec3 origin = offsetRayOrigin(hit.position, hit.geometricNormal, offsetScale_);
-        return traceChild(hit.position, origin, optics::reflect(d, hit.shadingNormal), depth, media, weight, true,
-                          sample, counters);
+        return traceChild(hit.position, origin, optics::reflect(d, hit.shadingNormal), depth, media, weight,
+                          Branch::Reflection, sample, counters);
     }
+
+    // What a secondary ray is counted as.
+    enum class Branch { Reflection, Refraction, PassThrough };
 
     // A secondary ray of depth + 1, unless max_depth or min_weight stops it (both counted).
     Color traceChild(const Vec3& start, const Vec3& origin, const Vec3& direction, std::uint32_t depth,
-                     const MediumStack& media, const Color& weight, bool reflection, int sample,
-                     TraceCounters& counters) const {
+                     const MediumStack& media, const Color& weight, Branch branch, int sample, TraceCounters& counters,
+                     Real passCovered = Real(0)) const {
         if (depth + 1 >= maxDepth_) {
             counters.depthLimitHits += 1;
             return Color(0);
@@ -392,9 +423,13 @@ private:
             counters.weightCuts += 1;
             return Color(0);
         }
-        if (reflection) counters.reflectionRays += 1;
-        else counters.refractionRays += 1;
-        return trace(start, origin, direction, depth + 1, media, weight, sample, counters);
+        if (branch == Branch::Reflection)
+            counters.reflectionRays += 1;
+        else if (branch == Branch::Refraction)
+            counters.refractionRays += 1;
+        else
+            counters.passThroughRays += 1;
+        return trace(start, origin, direction, depth + 1, media, weight, sample, counters, passCovered);
     }
 
     // ---- Glass -------------------------------------------------------------------------------
@@ -469,13 +504,13 @@ private:
             const Color wt = weight * (Real(1) - r) * tint;
             const Vec3 origin = offsetRayOrigin(through, -facing, offsetScale_);
             colour += (Real(1) - r) * tint *
-                      traceChild(through, origin, *refracted, depth, inside, wt, false, sample, counters);
+                      traceChild(through, origin, *refracted, depth, inside, wt, Branch::Refraction, sample, counters);
         } else {
             counters.totalInternalReflections += 1;  // R = 1 (the Fresnel functions return it)
         }
         // The reflected ray stays in the medium it came from: it keeps the old stack.
-        colour += r * traceChild(hit.position, offsetRayOrigin(hit.position, facing, offsetScale_), optics::reflect(d, n), depth,
-                                 media, weight * r, true, sample, counters);
+        colour += r * traceChild(hit.position, offsetRayOrigin(hit.position, facing, offsetScale_),
+                                 optics::reflect(d, n), depth, media, weight * r, Branch::Reflection, sample, counters);
         return colour;
     }
 
@@ -500,7 +535,7 @@ private:
         if (optics::cosSquaredTransmitted(d, hit.shadingNormal, n1 / n2) >= Real(0)) {  // as the kernel's cos2t
             const Color wt = weight * pane.transmittance * tint;
             colour += pane.transmittance * tint *
-                      traceChild(hit.position, through, d, depth, media, wt, false, sample, counters);
+                      traceChild(hit.position, through, d, depth, media, wt, Branch::Refraction, sample, counters);
         } else {
             counters.totalInternalReflections += 1;  // R = 1: the pane reflects everything
         }
@@ -560,7 +595,8 @@ private:
         thread_local std::vector<TriangleHit<Real>> hits;
         hits.clear();
         const Real t = nearest.t;
-        const Ray<Real> probe{ray.origin, ray.direction, std::max(Real(0), t - touchTolerance_), t + touchTolerance_};
+        const Ray<Real> probe{ray.origin, ray.direction, std::max(Real(0), t - touchTolerance_), t + touchTolerance_,
+                              ray.passCoveredBelow};
         all(probe, hits, counters);
         auto nearer = [](const TriangleHit<Real>& h, const std::optional<TriangleHit<Real>>& than) {
             return !than || h.t < than->t || (h.t == than->t && h.triangle < than->triangle);

@@ -8,7 +8,7 @@ static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(TraversalNode) == 64);
 static_assert(sizeof(TriangleVertices) == 48);
 static_assert(sizeof(ShadingTexel) == 16);
-static_assert(sizeof(GpuMaterial) == 64);
+static_assert(sizeof(GpuMaterial) == 80);
 static_assert(sizeof(TextureInfo) == 16);
 static_assert(sizeof(GpuLight) == 32);
 static_assert(sizeof(RenderParams) == 256);

@@ -16,13 +16,6 @@ static_assert(std::uint32_t(TextureFilter::Bilinear) == gpu::kFilterBilinear &&
 
 namespace {
 float bits(std::uint32_t value) { return std::bit_cast<float>(value); }
-
-// The mark a triangle of material `m` carries in its vertices' v2.w (gpu_types.h, "Triangles"),
-// which the kernel's traversal reads.
-std::uint32_t triangleMark(const Material& m) {
-    if (m.model == MaterialModel::Glass) return gpu::kTriangleGlass;
-    return hasCutouts(m) ? gpu::kTriangleCutout | std::uint32_t(m.cutout) : 0u;
-}
 }  // namespace
 
 void packVertices(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleVertices> into) {
@@ -30,7 +23,7 @@ void packVertices(const Scene& scene, const Bvh& bvh, std::span<gpu::TriangleVer
         packTriangleVertices(bvh, scene.triangles, into.subspan(begin, end - begin), begin);
         for (std::size_t i = begin; i < end; ++i) {
             const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
-            into[i].v2.w = bits(triangleMark(scene.materials[t.material]));
+            into[i].v2.w = bits(traversalMark(scene.materials[t.material]));
         }
     });
 }
@@ -47,11 +40,13 @@ PackedTables packTables(const Scene& scene) {
     PackedTables packed;
     for (const Material& m : scene.materials) {
         std::uint32_t texture = m.diffuseTexture >= 0 ? std::uint32_t(m.diffuseTexture) : gpu::kNoTexture;
+        std::uint32_t coverage = hasPartialCoverage(m) ? std::uint32_t(m.coverage) : gpu::kNoTexture;
         packed.materials.push_back({
             .ambient = glm::vec4(m.ambient, bits(std::uint32_t(m.model))),
             .diffuse = glm::vec4(m.diffuse, bits(texture)),
             .specular = glm::vec4(m.specular, m.shininess),
             .attenuation = glm::vec4(m.attenuation, m.ior),
+            .coverage = glm::vec4(bits(coverage), 0.0f, 0.0f, 0.0f),
         });
     }
     // The kernel reads material 0 for lanes that are not at a hit (one fetch a round for all

@@ -67,11 +67,11 @@ private:
     std::array<std::uint32_t, kRecent> recent_;
 };
 
-// Whether texture lookups read the triangle's uvs: its material's map_Kd, or its cut-outs in the
-// traversal.
+// Whether texture lookups read the triangle's uvs: its material's map_Kd, its cut-outs in the
+// traversal, or its partial coverage.
 bool textured(const Scene& scene, const Triangle& t) {
     const Material& m = scene.materials[t.material];
-    return m.diffuseTexture >= 0 || hasCutouts(m);
+    return m.diffuseTexture >= 0 || hasCutouts(m) || hasPartialCoverage(m);
 }
 
 }  // namespace

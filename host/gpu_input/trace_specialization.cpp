@@ -29,6 +29,7 @@ TraceSpecialization TraceSpecialization::forScene(const Scene& scene, const Scen
     s.dispersion = f.dispersion;
     s.glassTints = f.glassTints;
     s.cutouts = f.cutouts;
+    s.partialCoverage = f.partialCoverage;
     s.instancing = !scene.instances.empty();
     s.textures = f.textures;
     s.backgroundKind = std::uint32_t(f.background);
@@ -62,6 +63,7 @@ TraceKernelConstants TraceSpecialization::constants() const {
     c[gpu::kConstantInstancing] = instancing ? 1u : 0u;
     c[gpu::kConstantGlassTints] = glassTints ? 1u : 0u;
     c[gpu::kConstantCutouts] = cutouts ? 1u : 0u;
+    c[gpu::kConstantPartialCoverage] = partialCoverage ? 1u : 0u;
     return c;
 }
 
@@ -96,6 +98,7 @@ std::vector<std::string> TraceSpecialization::describe() const {
         std::string("dispersion: ") + onOff(dispersion),
         std::string("glass tints: ") + onOff(glassTints),
         std::string("cut-out surfaces: ") + onOff(cutouts),
+        std::string("partly covered surfaces: ") + onOff(partialCoverage),
         std::string("instancing: ") + onOff(instancing),
         std::string("textures: ") + onOff(textures),
         "background: " + kindName(backgroundKind, backgroundKindName),
@@ -120,6 +123,7 @@ nlohmann::json toJson(const TraceSpecialization& s) {
         {"dispersion", s.dispersion},
         {"glass_tints", s.glassTints},
         {"cutouts", s.cutouts},
+        {"partial_coverage", s.partialCoverage},
         {"instancing", s.instancing},
         {"textures", s.textures},
         {"background", kindName(s.backgroundKind, backgroundKindName)},

@@ -35,6 +35,7 @@ struct TraceSpecialization {
     bool dispersion = true;        // some glass disperses (SceneFeatures::dispersion)
     bool glassTints = true;        // some glass tints what crosses its surface (SceneFeatures::glassTints)
     bool cutouts = true;           // some surface has cut-out parts (SceneFeatures::cutouts)
+    bool partialCoverage = true;   // some surface is partly there (SceneFeatures::partialCoverage)
     bool instancing = true;        // the scene has instances: a two-level BVH (Scene::instances)
     bool textures = true;
     std::uint32_t backgroundKind = kAnyKind;  // BackgroundKind or kAnyKind

@@ -18,7 +18,8 @@ struct Image {
     std::uint32_t height = 0;
     std::vector<glm::vec3> pixels;  // width * height, row-major, top row first
     // The alpha channel (linear, 0 to 1) of a file that has one (PNG, WebP), as `pixels`; empty
-    // for an opaque image. Only textures read it (glTF's alphaMode MASK); writing ignores it.
+    // for an opaque image. Only textures read it (glTF's alphaMode MASK and BLEND, MTL's map_d);
+    // writing ignores it.
     std::vector<float> alpha;
 
     Image() = default;

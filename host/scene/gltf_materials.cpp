@@ -22,6 +22,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// alphaMode BLEND: alpha below half the least step of an 8-bit alpha is no surface at all, which
+// is cut away (render-model-decisions.md, "Partial coverage").
+constexpr double kNoCoverage = 0.5 / 255.0;
+
 // A relative URI as a path: percent-escapes decoded (RFC 3986), '/' as separator.
 fs::path uriPath(const std::string& uri) {
     std::string path;
@@ -233,15 +237,25 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
         (g.emissiveFactor.size() == 3 &&
          (g.emissiveFactor[0] > 0 || g.emissiveFactor[1] > 0 || g.emissiveFactor[2] > 0)))
         ignored.push_back("emission");
+    // The base colour's alpha: its texture's and its factor's (the specular-glossiness diffuse's
+    // where that replaces the base colour).
+    const tinygltf::TextureInfo& alphaSource = sgColour ? sgColour->first : pbr.baseColorTexture;
+    const double alphaFactor =
+        sgColour ? sgColour->second : (pbr.baseColorFactor.size() >= 4 ? pbr.baseColorFactor[3] : 1.0);
     if (g.alphaMode == "MASK") {
         if (m.model == MaterialModel::Glass)
             ignored.push_back("alphaMode MASK (a glass volume's surface is closed: it bounds its medium)");
-        else if (sgColour)
-            m.cutout = cutoutTexture(sgColour->first, sgColour->second, g.alphaCutoff, index, quoted, ignored);
         else
-            m.cutout =
-                cutoutTexture(pbr.baseColorTexture, pbr.baseColorFactor.size() >= 4 ? pbr.baseColorFactor[3] : 1.0,
-                              g.alphaCutoff, index, quoted, ignored);
+            m.cutout = alphaTexture(alphaSource, alphaFactor, g.alphaCutoff, index, quoted, ignored);
+    } else if (g.alphaMode == "BLEND") {
+        // Partial coverage (render-model-decisions.md, "Partial coverage"): alpha of the surface
+        // is there; where none of it is (alpha 0, below half the least 8-bit step), it is cut away.
+        if (m.model == MaterialModel::Glass || m.model == MaterialModel::ThinGlass) {
+            ignored.push_back("alphaMode BLEND (a glass is all there: its transmission is what passes)");
+        } else {
+            m.coverage = alphaTexture(alphaSource, alphaFactor, 1.0, index, quoted, ignored);
+            m.cutout = alphaTexture(alphaSource, alphaFactor, kNoCoverage, index, quoted, ignored);
+        }
     } else if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty()) {
         ignored.push_back("alphaMode " + g.alphaMode);
     }
@@ -364,9 +378,11 @@ Image GltfMaterials::decodeSource(int source, const std::string& quoted) {
             if (payload != std::string::npos) dataUri = base64Bytes(std::string_view(image.uri).substr(payload + 8));
             if (!dataUri) throw inputError(name, 0, "a data URI that is not base64");
         }
-        return image.as_is ? decodeImage(name, image.image, texelLimit_.leftAfter(scene_))
-               : dataUri   ? decodeImage(name, std::move(*dataUri), texelLimit_.leftAfter(scene_))
-                           : readImage(name, texelLimit_.leftAfter(scene_));
+        Image decoded = image.as_is ? decodeImage(name, image.image, texelLimit_.leftAfter(scene_))
+                        : dataUri   ? decodeImage(name, std::move(*dataUri), texelLimit_.leftAfter(scene_))
+                                    : readImage(name, texelLimit_.leftAfter(scene_));
+        lastAlpha_ = {source, decoded.width, decoded.height, decoded.alpha};
+        return decoded;
     } catch (const ImageTooLarge& e) {
         fail(quoted + ": baseColorTexture " + e.what());
     } catch (const InputError& e) {
@@ -392,34 +408,41 @@ int GltfMaterials::baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3
     return textures_[key] = index;
 }
 
-// alphaMode MASK (glTF 2.0, "Alpha Coverage"): the surface is not there where the base colour's
-// alpha (the texture's times the factor's) is below alphaCutoff. Material::cutout holds alpha
-// over the cutoff, per texel of the image, or one texel where the image has no alpha channel;
-// none where nothing is cut.
-int GltfMaterials::cutoutTexture(const tinygltf::TextureInfo& info, double alphaFactor, double alphaCutoff,
-                                 int material, const std::string& quoted, std::vector<std::string>& ignored) {
-    if (!(alphaCutoff > 0.0)) return -1;  // alpha is never below 0
-    const double scale = std::clamp(alphaFactor, 0.0, 1.0) / alphaCutoff;
+// The base colour's alpha (glTF 2.0, "Alpha Coverage": the texture's times the factor's) over
+// `over`, as a grey texture read at the base colour's coordinates: per texel of the image, or
+// one texel where the image has no alpha channel; none where it is 1 or more everywhere. MASK's
+// Material::cutout is alpha over alphaCutoff (cut below 1), BLEND's Material::coverage alpha
+// itself and its cutout alpha over kNoCoverage.
+int GltfMaterials::alphaTexture(const tinygltf::TextureInfo& info, double alphaFactor, double over, int material,
+                                const std::string& quoted, std::vector<std::string>& ignored) {
+    if (!(over > 0.0)) return -1;  // alpha is never below 0
+    const double scale = std::clamp(alphaFactor, 0.0, 1.0) / over;
     const int source = baseColorSource(info, material, quoted, ignored);
     const auto key = std::make_pair(source, scale);
-    if (auto found = cutouts_.find(key); found != cutouts_.end()) return found->second;
-    std::optional<Image> decoded;
-    if (source >= 0) decoded = decodeSource(source, quoted);
+    if (auto found = alphaTextures_.find(key); found != alphaTextures_.end()) return found->second;
+    const std::vector<float>* alpha = source >= 0 ? &alphaOf(source, quoted) : nullptr;
     // Named for `vitrum info`: the image's alpha, or the factor's alone.
-    Texture cutout{file_.string() + ": " + quoted + "'s baseColorFactor alpha", 1, 1, {glm::vec3(float(scale))}};
-    if (decoded && !decoded->alpha.empty()) {
-        cutout.path = imageName(source).string() + " (alpha)";
-        cutout.width = int(decoded->width);
-        cutout.height = int(decoded->height);
-        cutout.texels.resize(decoded->alpha.size());
-        for (std::size_t i = 0; i < cutout.texels.size(); ++i)
-            cutout.texels[i] = glm::vec3(float(double(decoded->alpha[i]) * scale));
-    } else if (scale >= 1.0) {
-        return cutouts_[key] = -1;  // opaque everywhere
+    Texture texture{file_.string() + ": " + quoted + "'s baseColorFactor alpha", 1, 1, {glm::vec3(float(scale))}};
+    if (alpha && !alpha->empty()) {
+        texture.path = imageName(source).string() + (over == kNoCoverage ? " (where alpha is 0)" : " (alpha)");
+        texture.width = int(lastAlpha_.width);
+        texture.height = int(lastAlpha_.height);
+        texture.texels.resize(alpha->size());
+        for (std::size_t i = 0; i < texture.texels.size(); ++i)
+            texture.texels[i] = glm::vec3(float(double((*alpha)[i]) * scale));
     }
+    if (std::all_of(texture.texels.begin(), texture.texels.end(), [](glm::vec3 t) { return t.x >= 1.0f; }))
+        return alphaTextures_[key] = -1;  // 1 or more everywhere
     const int index = int(scene_.textures.size());
-    scene_.textures.push_back(std::move(cutout));
-    return cutouts_[key] = index;
+    scene_.textures.push_back(std::move(texture));
+    return alphaTextures_[key] = index;
+}
+
+// The alpha channel of image `source` (empty where it has none). The image last decoded keeps
+// its alpha, so that a masked or blended material's colour and alpha decode it once.
+const std::vector<float>& GltfMaterials::alphaOf(int source, const std::string& quoted) {
+    if (lastAlpha_.source != source) decodeSource(source, quoted);
+    return lastAlpha_.alpha;
 }
 
 // KHR_texture_transform: uv' = T R S uv in glTF's texture coordinates (v down), with T the

@@ -63,8 +63,9 @@ private:
     Image decodeSource(int source, const std::string& quoted);
     int baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3 factor, int material, const std::string& quoted,
                          std::vector<std::string>& ignored);
-    int cutoutTexture(const tinygltf::TextureInfo& info, double alphaFactor, double alphaCutoff, int material,
-                      const std::string& quoted, std::vector<std::string>& ignored);
+    int alphaTexture(const tinygltf::TextureInfo& info, double alphaFactor, double over, int material,
+                     const std::string& quoted, std::vector<std::string>& ignored);
+    const std::vector<float>& alphaOf(int source, const std::string& quoted);
     glm::dmat3 textureTransform(const tinygltf::Value& transform, const std::string& quoted);
 
     Scene& scene_;
@@ -75,7 +76,12 @@ private:
     std::map<int, glm::dmat3> uvTransforms_;  // by glTF material: its baseColorTexture's KHR_texture_transform
     std::map<int, int> sources_;              // by glTF material: its base colour's image, -1 for none
     std::map<std::tuple<int, float, float, float>, int> textures_;  // by image and factor
-    std::map<std::pair<int, double>, int> cutouts_;  // by image and alpha factor over cutoff: Material::cutout
+    std::map<std::pair<int, double>, int> alphaTextures_;           // by image and alpha factor over a divisor
+    struct {
+        int source = -1;
+        std::uint32_t width = 0, height = 0;
+        std::vector<float> alpha;
+    } lastAlpha_;  // the alpha of the image decoded last (alphaOf)
     std::optional<std::uint32_t> defaultMaterial_;
 };
 

@@ -59,11 +59,26 @@ struct Material {
     // alpha over alphaCutoff); -1 for none. A ray passes such a hit by (docs/render-model-decisions.md,
     // "Cut-out surfaces"). Not for glass volumes (hasCutouts).
     int cutout = -1;
+    // Partial coverage (glTF's alphaMode BLEND): index into Scene::textures of a grey texture, read
+    // at a hit's uv as map_Kd is, giving the share alpha of the surface that is there (glTF's alpha,
+    // the texture's times the factor's); -1 for a surface that is all there. At a hit the surface's
+    // shading takes alpha of the ray's weight and the ray passes on through it, undeviated, with
+    // 1 - alpha (docs/render-model-decisions.md, "Partial coverage"). Only opaque models
+    // (hasPartialCoverage).
+    int coverage = -1;
 };
 
 // Whether rays pass by parts of the material's surfaces (Material::cutout): not a glass volume's,
 // whose closed surface bounds its medium.
 inline bool hasCutouts(const Material& m) { return m.cutout >= 0 && m.model != MaterialModel::Glass; }
+
+// Whether the material's surfaces are partly there (Material::coverage): Lambert, Phong and
+// mirrors; a glass's or thin glass's coverage is not read (docs/render-model-decisions.md,
+// "Partial coverage").
+inline bool hasPartialCoverage(const Material& m) {
+    return m.coverage >= 0 &&
+           (m.model == MaterialModel::Lambert || m.model == MaterialModel::Phong || m.model == MaterialModel::Mirror);
+}
 
 struct Triangle {
     glm::vec3 position[3];

@@ -84,6 +84,7 @@ std::uint64_t sceneFingerprint(const Scene& scene) {
         d.add(m.tint);
         d.add(m.diffuseTexture);
         d.add(m.cutout);
+        d.add(m.coverage);
     }
     d.add(scene.textures.size());
     for (const Texture& t : scene.textures) {

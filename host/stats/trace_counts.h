@@ -22,7 +22,9 @@ struct TraceCounts {
     VITRUM_TRACE_STATISTICS(VITRUM_COUNT_MEMBER)
 #undef VITRUM_COUNT_MEMBER
 
-    std::uint64_t totalRays() const { return primaryRays + shadowRays + reflectionRays + refractionRays; }
+    std::uint64_t totalRays() const {
+        return primaryRays + shadowRays + reflectionRays + refractionRays + passThroughRays;
+    }
 
     // Sums add, maxima take the larger.
     TraceCounts& operator+=(const TraceCounts& other);

@@ -82,9 +82,13 @@ VITRUM_CONST uint kGpuInstanceNodes = 2u;
 // triangle's mark, so that the traversal knows what it needs without reading materials:
 // kTriangleGlass where the material is glass (touching glass surfaces, shaders/touching.glsl);
 // kTriangleCutout | texture where the material has cut-out parts (Material::cutout, the texture
-// its index in the texture table; shaders/cutout.glsl); else 0.
+// its index in the texture table, kTriangleCutoutTexture's bits; shaders/cutout.glsl), with
+// kTriangleCovered where it is partly there (Material::coverage: a ray going on through such a
+// surface passes them by near its start; shading.glsl's coverSurface); else 0.
 VITRUM_CONST uint kTriangleGlass = 1u;
 VITRUM_CONST uint kTriangleCutout = 0x80000000u;
+VITRUM_CONST uint kTriangleCovered = 0x40000000u;
+VITRUM_CONST uint kTriangleCutoutTexture = 0x3FFFFFFFu;
 struct TriangleVertices {
     vec4 v0;
     vec4 v1;
@@ -123,11 +127,14 @@ VITRUM_CONST uint kNoTexture = 0xFFFFFFFFu;
 //   diffuse.w  (uint bits) = index into the texture table or kNoTexture
 //   specular.w = Phong exponent Ns
 //   attenuation.xyz = Beer-Lambert mu per channel (Tf), attenuation.w = IOR (Ni)
+//   coverage.x (uint bits) = the texture of the share of the surface that is there
+//                            (Material::coverage, hasPartialCoverage) or kNoTexture; yzw unused
 struct GpuMaterial {
     vec4 ambient;
     vec4 diffuse;
     vec4 specular;
     vec4 attenuation;
+    vec4 coverage;
 };
 
 // A texture is a run of texels in the texture texel buffer, one 16-byte texel a texture texel
@@ -160,7 +167,7 @@ VITRUM_CONST uint kTraversalNodeTexels = 4u;
 VITRUM_CONST uint kGpuInstanceTexels = 8u;
 VITRUM_CONST uint kTraceStateTexels = 16u;  // a pixel's saved state (shaders/suspend.glsl)
 VITRUM_CONST uint kTriangleVerticesTexels = 3u;
-VITRUM_CONST uint kGpuMaterialTexels = 4u;
+VITRUM_CONST uint kGpuMaterialTexels = 5u;
 VITRUM_CONST uint kGpuLightTexels = 2u;
 VITRUM_CONST uint kObjectMediumTexels = 3u;
 
@@ -183,7 +190,9 @@ VITRUM_CONST uint kMaxMediumDepth = 4u;   // most media a ray can be inside at o
 struct PendingRay {
     vec4 origin;     // .w = depth (uint bits)
     vec4 direction;  // unit; .w = number of media on the stack (uint bits)
-    vec4 weight;     // .xyz = product of the path factors (R, 1 - R, Beer-Lambert, m_s)
+    vec4 weight;     // .xyz = product of the path factors (R, 1 - R, Beer-Lambert, m_s); .w = the t
+                     // below which a ray going on through a partly covered surface passes such
+                     // surfaces by (shaders/shading.glsl's coverSurface), else 0
     uvec4 media;     // object indices of the media the ray is inside, innermost last
 };
 

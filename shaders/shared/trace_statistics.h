@@ -22,7 +22,7 @@
     X(2, reflectionRays, Sum, rays, reflection, Both)                                     \
     X(3, refractionRays, Sum, rays, refraction, Both)                                     \
     /* pixels of this tile that need another dispatch (after the first: to restart) */    \
-    X(4, unfinishedPixels, Sum, none, unfinished_pixels, Gpu)                              \
+    X(4, unfinishedPixels, Sum, none, unfinished_pixels, Gpu)                             \
     /* the main loop ended without a reason of the kernel's: the driver's loop limit */   \
     X(5, loopLimitSuspected, Sum, limits, loop_limit_suspected, Both)                     \
     X(6, traversalStackOverflows, Sum, limits, traversal_stack_overflow, Both)            \
@@ -52,20 +52,22 @@
     X(20, falseHits, Sum, top, false_hits, Both)                                          \
     /* white rays replaced by their wavelength samples at a dispersive glass */           \
     X(21, dispersionSplits, Sum, top, dispersion_splits, Both)                            \
+    /* rays going on through a partly covered surface (Material::coverage) */             \
+    X(22, passThroughRays, Sum, rays, pass_through, Both)                                 \
     /* most loop steps one pixel needed, over all its dispatches */                       \
-    X(22, maxPixelLoopSteps, Max, top, max_pixel_loop_steps, Gpu)                         \
+    X(23, maxPixelLoopSteps, Max, top, max_pixel_loop_steps, Gpu)                         \
     /* deepest ray traced (primary: 0) */                                                 \
-    X(23, maxRayDepth, Max, top, max_ray_depth, Both)                                     \
+    X(24, maxRayDepth, Max, top, max_ray_depth, Both)                                     \
     /* most media one ray was inside */                                                   \
-    X(24, maxMediumDepth, Max, top, max_medium_depth, Both)
+    X(25, maxMediumDepth, Max, top, max_medium_depth, Both)
 
 VITRUM_GPU_BEGIN
-VITRUM_CONST uint kStatFirstMax = 22u;  // the first Max
-VITRUM_CONST uint kStatCount = 25u;
+VITRUM_CONST uint kStatFirstMax = 23u;  // the first Max
+VITRUM_CONST uint kStatCount = 26u;
 // Not a statistic, but zeroed with them: the dispatch's next unit of work, which each subgroup
 // takes as it starts (schedule.glsl's takeUnit).
-VITRUM_CONST uint kWorkCursor = 25u;
-VITRUM_CONST uint kDispatchCounterCount = 26u;  // the buffer's uints: the statistics and the cursor
+VITRUM_CONST uint kWorkCursor = 26u;
+VITRUM_CONST uint kDispatchCounterCount = 27u;  // the buffer's uints: the statistics and the cursor
 VITRUM_GPU_END
 
 #endif

@@ -983,6 +983,69 @@ TEST_F(GltfLoader, AMaskedMaterialIsCutOutWhereItsAlphaIsBelowTheCutoff) {
     EXPECT_TRUE(features.cutouts);
 }
 
+// alphaMode BLEND (glTF 2.0, "Alpha Coverage"): an opaque surface is partly there, by the base
+// colour's alpha (texture times factor); where the alpha is 0 it is cut away (the alpha over half
+// an 8-bit step, 1/510, below 1); a glass's BLEND is ignored with a warning
+// (render-model-decisions.md, "Partial coverage").
+TEST_F(GltfLoader, ABlendedMaterialIsPartlyThereByItsAlpha) {
+    GltfBuilder b;
+    const std::vector<unsigned char> rgba = {255, 0, 0, 0, 0, 255, 0, 127, 0, 0, 255, 128, 9, 9, 9, 255};
+    b.doc()["images"] =
+        json::array({{{"uri", "data:image/png;base64," + base64(pngWithAlpha(2, 2, 4, rgba))}},
+                     {{"uri", "data:image/png;base64," + base64(pngWithAlpha(2, 1, 4, {1, 2, 3, 255, 4, 5, 6, 255}))}},
+                     {{"uri", "data:image/png;base64," + base64(pngWithAlpha(1, 1, 3, {1, 2, 3}))}}});
+    b.doc()["textures"] = json::array({{{"source", 0}}, {{"source", 1}}, {{"source", 2}}});
+    const int uvs = b.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, 5126, "VEC2", 3);
+    const int positions = b.positions(kTriangle);
+    auto blended = [](std::string name, int texture, double alpha) {
+        json pbr = {{"baseColorFactor", {0.5, 0.5, 0.5, alpha}}, {"metallicFactor", 0.0}};
+        if (texture >= 0) pbr["baseColorTexture"] = {{"index", texture}};
+        return json{{"name", std::move(name)}, {"alphaMode", "BLEND"}, {"pbrMetallicRoughness", pbr}};
+    };
+    json mirror = blended("mirror", 0, 0.5);
+    mirror["pbrMetallicRoughness"]["metallicFactor"] = 1.0;
+    json thin = blended("thin", 0, 1.0);
+    thin["extensions"] = {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}};
+    for (const json& material : {blended("rgba", 0, 1.0), blended("factor", -1, 0.25), blended("factor 0", -1, 0.0),
+                                 blended("opaque alpha", 1, 1.0), blended("no alpha channel", 2, 0.6), mirror, thin})
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", positions}, {"TEXCOORD_0", uvs}}},
+                                 {"material", b.material(material)}})}});
+    ::testing::internal::CaptureStderr();
+    const Scene scene = load(b.write(dir_ / "blended.gltf"));
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    ASSERT_EQ(scene.materials.size(), 7u);
+    auto values = [&](int texture) -> std::vector<float> {
+        if (texture < 0) return {};
+        std::vector<float> v;
+        for (const glm::vec3& texel : scene.textures[std::size_t(texture)].texels) v.push_back(texel.x);
+        return v;
+    };
+    const float a127 = 127 / 255.0f, a128 = 128 / 255.0f;  // the alphas as read
+    const double overNone = 510.0;                         // over half an 8-bit step
+    // Alpha itself is the share that is there; only its 0 is cut.
+    EXPECT_EQ(values(scene.materials[0].coverage), (std::vector<float>{0.0f, a127, a128, 1.0f}));
+    EXPECT_EQ(values(scene.materials[0].cutout),
+              (std::vector<float>{0.0f, float(double(a127) * overNone), float(double(a128) * overNone), 510.0f}));
+    EXPECT_TRUE(hasPartialCoverage(scene.materials[0]) && hasCutouts(scene.materials[0]));
+    EXPECT_EQ(values(scene.materials[1].coverage), std::vector<float>{0.25f}) << "the factor alone";
+    EXPECT_EQ(scene.materials[1].cutout, -1) << "a quarter is there everywhere";
+    EXPECT_EQ(values(scene.materials[2].coverage), std::vector<float>{0.0f});
+    EXPECT_EQ(values(scene.materials[2].cutout), std::vector<float>{0.0f}) << "a factor of 0: nothing is there";
+    EXPECT_EQ(scene.materials[3].coverage, -1) << "an alpha of 255 everywhere is all there";
+    EXPECT_EQ(scene.materials[3].cutout, -1);
+    EXPECT_EQ(values(scene.materials[4].coverage), std::vector<float>{0.6f}) << "an image without alpha: the factor";
+    EXPECT_EQ(scene.materials[5].model, MaterialModel::Mirror);
+    EXPECT_EQ(values(scene.materials[5].coverage),
+              (std::vector<float>{0.0f, float(double(a127) * 0.5), float(double(a128) * 0.5), 0.5f}));
+    EXPECT_EQ(scene.materials[6].model, MaterialModel::ThinGlass);
+    EXPECT_EQ(scene.materials[6].coverage, -1);
+    EXPECT_EQ(scene.materials[6].cutout, -1);
+    EXPECT_NE(warnings.find("(\"thin\"): ignored: alphaMode BLEND"), std::string::npos) << warnings;
+    EXPECT_EQ(warnings.find("alphaMode"), warnings.rfind("alphaMode")) << "only the glass's is ignored: " << warnings;
+    const SceneFeatures features = analyseScene(scene);
+    EXPECT_TRUE(features.partialCoverage && features.cutouts && features.textures);
+}
+
 // tinygltf passes material extensions' values on unchecked: one of the wrong type is refused,
 // naming the material, the extension and the value, never read as absent (a transmissionFactor
 // "1" read as 0 would be plastic).

@@ -114,6 +114,29 @@ TEST(SceneFeatures, OnlyCutOutSurfacesNeedTheCutoutTest) {
         TraceSpecialization::forScene(scene, analyseScene(loadProjectScene("scenes/water_glass.json"))).cutouts);
 }
 
+// A partly covered surface (Material::coverage) of a Lambert, Phong or mirror material calls for
+// the coverage test, its uvs and pending rays (its pass-through waits as a refraction does) and
+// makes max_depth matter; a glass's or thin glass's coverage is not read.
+TEST(SceneFeatures, PartlyCoveredSurfacesNeedPendingRaysAndTheirUvs) {
+    Scene scene = loadProjectScene("scenes/lambert_spheres.json");
+    for (Material& m : scene.materials) m.model = MaterialModel::Lambert;
+    const SceneFeatures before = analyseScene(scene);
+    ASSERT_FALSE(before.partialCoverage || before.textures || before.reflection);
+    ASSERT_EQ(before.rayStackDepth, 0u);
+    ASSERT_EQ(before.usefulDepth, 1u);
+    scene.textures.push_back(Texture{"coverage", 1, 1, {glm::vec3(0.5f)}});
+    for (Material& m : scene.materials) m.coverage = 0;
+    const SceneFeatures f = analyseScene(scene);
+    EXPECT_TRUE(f.partialCoverage && f.textures && f.reflection);
+    EXPECT_EQ(f.rayStackDepth, scene.settings.maxDepth - 1);
+    EXPECT_EQ(f.usefulDepth, scene.settings.maxDepth);
+    EXPECT_TRUE(TraceSpecialization::forScene(scene, f).partialCoverage);
+    EXPECT_TRUE(TraceSpecialization::general().partialCoverage);
+    EXPECT_FALSE(TraceSpecialization::forScene(scene, before).partialCoverage);
+    for (Material& m : scene.materials) m.model = MaterialModel::ThinGlass;
+    EXPECT_FALSE(analyseScene(scene).partialCoverage) << "a thin glass's coverage";
+}
+
 TEST(SceneFeatures, GlassRestingOnAnOpaqueSurfaceNeedsTheContactCheck) {
     // A glass box on an opaque slab: standing on it, or a gap far below the touching distance
     // (1e-5 of the diagonal, here ~9e-5; the analysis looks twice as far), calls for the check;

@@ -95,28 +95,31 @@ TEST(ShadingTexels, EveryTriangleGetsItsNormalsAndUvsBackBitForBit) {
     }
 }
 
-// The traversal reads a cut-out triangle's uvs (shaders/cutout.glsl): a material with cut-outs
-// and no map_Kd stores them as a textured one's, bit for bit; a glass volume's cut-out (which
-// nothing reads) stores none.
-TEST(ShadingTexels, ACutOutTriangleGetsItsUvs) {
-    Scene scene = mixedShading();
-    for (Material& m : scene.materials) m.diffuseTexture = -1;
-    scene.materials[0].cutout = 0;
-    const Bvh bvh = buildSceneBvh(scene);
-    const ShadingPlan plan = planShading(scene, bvh);
-    std::size_t cut = 0;
-    for (const Triangle& t : scene.triangles) cut += t.material == 0 ? 1 : 0;
-    EXPECT_EQ(plan.texturedTriangles, cut);
-    std::vector<gpu::ShadingTexel> texels(plan.texels());
-    writeShading(scene, bvh, plan, texels);
-    for (std::size_t i = 0; i < bvh.triangleOrder.size(); ++i) {
-        const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
-        if (t.material != 0) continue;
-        const Decoded decoded = decode(texels, i);
-        for (int k = 0; k < 3; ++k) EXPECT_EQ(decoded.uv[k], t.uv[k]) << "corner " << k;
+// The traversal reads a cut-out triangle's uvs (shaders/cutout.glsl), shading a partly covered
+// one's (coverSurface in shading.glsl): a material with either and no map_Kd stores them as a
+// textured one's, bit for bit; a glass volume's (which nothing reads) stores none.
+TEST(ShadingTexels, ACutOutOrPartlyCoveredTriangleGetsItsUvs) {
+    for (bool cutOut : {true, false}) {
+        SCOPED_TRACE(cutOut ? "cut out" : "partly covered");
+        Scene scene = mixedShading();
+        for (Material& m : scene.materials) m.diffuseTexture = -1;
+        (cutOut ? scene.materials[0].cutout : scene.materials[0].coverage) = 0;
+        const Bvh bvh = buildSceneBvh(scene);
+        const ShadingPlan plan = planShading(scene, bvh);
+        std::size_t cut = 0;
+        for (const Triangle& t : scene.triangles) cut += t.material == 0 ? 1 : 0;
+        EXPECT_EQ(plan.texturedTriangles, cut);
+        std::vector<gpu::ShadingTexel> texels(plan.texels());
+        writeShading(scene, bvh, plan, texels);
+        for (std::size_t i = 0; i < bvh.triangleOrder.size(); ++i) {
+            const Triangle& t = scene.triangles[bvh.triangleOrder[i]];
+            if (t.material != 0) continue;
+            const Decoded decoded = decode(texels, i);
+            for (int k = 0; k < 3; ++k) EXPECT_EQ(decoded.uv[k], t.uv[k]) << "corner " << k;
+        }
+        scene.materials[0].model = MaterialModel::Glass;
+        EXPECT_EQ(planShading(scene, bvh).texturedTriangles, 0u);
     }
-    scene.materials[0].model = MaterialModel::Glass;
-    EXPECT_EQ(planShading(scene, bvh).texturedTriangles, 0u);
 }
 
 TEST(ShadingTexels, AFlatUntexturedModelTakesOneTexelATriangle) {

@@ -11,13 +11,6 @@
 namespace vitrum::testing {
 namespace {
 
-// A grey texture of width x 1 texels.
-Texture greyRow(std::vector<float> values) {
-    Texture t{"cutout", int(values.size()), 1, {}};
-    for (float v : values) t.texels.push_back(glm::vec3(v));
-    return t;
-}
-
 // baseScene's wall of the normal model (colour (n + 1) / 2 = (0.5, 0, 0.5) facing the camera),
 // u running along +x across it, cut where u < 1/2: the texture (0, 2) read nearest, or read
 // bilinear and wrapping (then 4u - 1 between the texel centres, and from 1 at u = 0 down to 0 at

@@ -99,6 +99,7 @@ inline void expectSameWork(const RenderStats& a, const RenderStats& b) {
     EXPECT_EQ(a.shadowRays, b.shadowRays);
     EXPECT_EQ(a.reflectionRays, b.reflectionRays);
     EXPECT_EQ(a.refractionRays, b.refractionRays);
+    EXPECT_EQ(a.passThroughRays, b.passThroughRays);
     EXPECT_EQ(a.depthLimitHits, b.depthLimitHits);
     EXPECT_EQ(a.rayStackOverflows, b.rayStackOverflows);
     EXPECT_EQ(a.mediumStackOverflows, b.mediumStackOverflows);

@@ -81,15 +81,15 @@ TEST(Instancing, TintedGlassCopiesRenderAsTheirFlattenedScene) {
     EXPECT_GT(diffImages(instanced.gpu, untinted.gpu).shareOver005, 0.01);
 }
 
-// Copies of a mesh with cut-out parts (Material::cutout): each copy's hits are tested against
-// the texture at the mesh's uvs, in the mesh's space, as the flattened copies' are in the world.
-TEST(Instancing, CutOutCopiesRenderAsTheirFlattenedScene) {
-    Scene scene = instancedScene();
+// instancedScene with its tetrahedron mesh made of a red plastic whose texture `texture` (a 3x3
+// grey texture alternating `even` and `odd`) is its cutout or coverage, at uvs that repeat it a few
+// times across the mesh; returns the plastic's material index.
+std::size_t texturedTetrahedra(Scene& scene, int Material::*texture, float even, float odd) {
     Material plastic =
         makeMaterial(MaterialModel::Phong, glm::vec3(0.05f), glm::vec3(0.8f, 0.3f, 0.2f), glm::vec3(0.3f), 40.0f, 1.5f);
-    plastic.cutout = int(scene.textures.size());
-    scene.textures.push_back(Texture{"cutout", 3, 3, {}});
-    for (int i = 0; i < 9; ++i) scene.textures.back().texels.push_back(glm::vec3(i % 2 == 0 ? 0.2f : 1.5f));
+    plastic.*texture = int(scene.textures.size());
+    scene.textures.push_back(Texture{"grey", 3, 3, {}});
+    for (int i = 0; i < 9; ++i) scene.textures.back().texels.push_back(glm::vec3(i % 2 == 0 ? even : odd));
     scene.materials.push_back(plastic);
     const Mesh& tetrahedron = scene.meshes[1];
     for (std::uint32_t i = tetrahedron.first; i < tetrahedron.first + tetrahedron.count; ++i) {
@@ -97,14 +97,39 @@ TEST(Instancing, CutOutCopiesRenderAsTheirFlattenedScene) {
         t.material = std::uint32_t(scene.materials.size() - 1);
         for (int k = 0; k < 3; ++k) t.uv[k] = 4.0f * glm::vec2(t.position[k].x + t.position[k].z, t.position[k].y);
     }
+    return scene.materials.size() - 1;
+}
+
+// Copies of a mesh with cut-out parts (Material::cutout): each copy's hits are tested against
+// the texture at the mesh's uvs, in the mesh's space, as the flattened copies' are in the world.
+TEST(Instancing, CutOutCopiesRenderAsTheirFlattenedScene) {
+    Scene scene = instancedScene();
+    const std::size_t plastic = texturedTetrahedra(scene, &Material::cutout, 0.2f, 1.5f);
     const RenderPair instanced = renderBoth(scene);
     const RenderPair flat = renderBoth(flattened(scene));
     expectImagesMatch(instanced);
     expectSameImage(instanced.gpu, flat.gpu);
     expectSameImage(instanced.cpu, flat.cpu);
     EXPECT_TRUE(instanced.gpuStats.kernel && instanced.gpuStats.kernel->cutouts);
-    scene.materials.back().cutout = -1;
+    scene.materials[plastic].cutout = -1;
     EXPECT_GT(diffImages(instanced.gpu, renderBoth(scene).gpu).shareOver005, 0.01) << "the holes show";
+}
+
+// Copies of a partly covered mesh (Material::coverage): each copy's coverage is read at the
+// mesh's uvs and its rays pass on through it from the hit moved to the world, as the flattened
+// copies' do.
+TEST(Instancing, PartlyCoveredCopiesRenderAsTheirFlattenedScene) {
+    Scene scene = instancedScene();
+    const std::size_t plastic = texturedTetrahedra(scene, &Material::coverage, 0.2f, 0.7f);
+    const RenderPair instanced = renderBoth(scene);
+    const RenderPair flat = renderBoth(flattened(scene));
+    expectImagesMatch(instanced);
+    expectSameImage(instanced.gpu, flat.gpu);
+    expectSameImage(instanced.cpu, flat.cpu);
+    EXPECT_GT(instanced.gpuStats.passThroughRays, 0u);
+    EXPECT_EQ(instanced.gpuStats.passThroughRays, flat.gpuStats.passThroughRays);
+    scene.materials[plastic].coverage = -1;
+    EXPECT_GT(diffImages(instanced.gpu, renderBoth(scene).gpu).shareOver005, 0.01) << "what lies beyond shows";
 }
 
 // A mirroring instance's triangles face out as its flattened copy's do (the loaders reverse the

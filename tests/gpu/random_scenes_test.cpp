@@ -164,6 +164,8 @@ public:
         // Surfaces cut out where a texture is below 1 (glTF's alphaMode MASK), about half of
         // them: an opaque or thin-glass material's.
         if (chance(0.25)) addCutout(scene);
+        // Opaque surfaces partly there (glTF's alphaMode BLEND), drawn after everything else.
+        if (chance(0.25)) addCoverage(scene);
         return transformed(scene, scale, shift);
     }
 
@@ -278,6 +280,26 @@ private:
         scene.textures.push_back(std::move(texture));
         uvsFromPositions(scene);
         drawn_ += ", material " + std::to_string(material) + " cut out";
+    }
+
+    // A random grey texture of 2 to 5 texels a side, from -1/4 to 3/2 (taken within [0, 1]), the
+    // share of one Lambert, Phong or mirror material that is there (if there is one).
+    void addCoverage(Scene& scene) {
+        std::vector<std::size_t> candidates;
+        for (std::size_t i = 0; i < scene.materials.size(); ++i)
+            if (MaterialModel m = scene.materials[i].model;
+                m == MaterialModel::Lambert || m == MaterialModel::Phong || m == MaterialModel::Mirror)
+                candidates.push_back(i);
+        if (candidates.empty()) return;
+        const std::size_t material =
+            candidates[std::uniform_int_distribution<std::size_t>(0, candidates.size() - 1)(rng_)];
+        const int side = int(uniform(2.0f, 5.99f));
+        Texture texture{"coverage", side, side, {}};
+        for (int i = 0; i < side * side; ++i) texture.texels.push_back(vec3(uniform(-0.25f, 1.5f)));
+        scene.materials[material].coverage = int(scene.textures.size());
+        scene.textures.push_back(std::move(texture));
+        uvsFromPositions(scene);
+        drawn_ += ", material " + std::to_string(material) + " partly there";
     }
 
     // Every position, normal and direction of the scene turned by `angle` about `axis`.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <utility>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -21,6 +22,13 @@ inline Material makeMaterial(MaterialModel model, glm::vec3 ambient, glm::vec3 d
     m.shininess = shininess;
     m.ior = ior;
     return m;
+}
+
+// A grey texture of width x 1 texels (a cutout or coverage texture).
+inline Texture greyRow(const std::vector<float>& values) {
+    Texture t{"grey", int(values.size()), 1, {}};
+    for (float v : values) t.texels.push_back(glm::vec3(v));
+    return t;
 }
 
 // A triangle with its geometric normal as vertex normals.
