@@ -360,6 +360,36 @@ TEST(Bvh, ACutAwayHitIsNoHitOfAnyTraversal) {
     EXPECT_EQ(traceClosest<float>(TraversalInput{bvh.nodes, packed}, throughTheCut)->triangle, upper);
 }
 
+// A ray going on through a partly covered surface (Ray::passCoveredBelow) passes by the triangles
+// marked kTriangleCovered that it hits below its window, in every traversal; beyond the window,
+// and unmarked triangles anywhere, it hits as any ray does.
+TEST(Bvh, ARayPassingThroughACoveredSurfacePassesCoveredTrianglesByWithinItsWindow) {
+    std::vector<Triangle> two{Triangle{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {}, {}, 0, 0},
+                              Triangle{{{0, 0, -1}, {1, 0, -1}, {0, 1, -1}}, {}, {}, 0, 1}};
+    const Bvh bvh = buildBvh(two);
+    auto packed = packTriangleVertices(bvh, two);
+    const std::uint32_t upper = bvh.triangleOrder[0] == 0 ? 0u : 1u;
+    packed[upper].v2.w = std::bit_cast<float>(gpu::kTriangleCovered);
+    const TraversalInput input{bvh.nodes, packed};
+    Ray<double> down{{0.25, 0.25, 1.0}, {0.0, 0.0, -1.0}};
+    down.passCoveredBelow = 1.5;  // the upper triangle is met at t = 1, the lower at 2
+    const auto passing = traceClosest<double>(input, down);
+    ASSERT_TRUE(passing);
+    EXPECT_EQ(passing->triangle, 1u - upper);
+    EXPECT_DOUBLE_EQ(passing->t, 2.0);
+    std::vector<TriangleHit<double>> hits;
+    traceAll<double>(input, down, hits);
+    ASSERT_EQ(hits.size(), 1u);
+    EXPECT_EQ(hits[0].triangle, 1u - upper);
+    down.passCoveredBelow = 0.5;  // crossed before the upper triangle
+    EXPECT_EQ(traceClosest<double>(input, down)->triangle, upper);
+    down.passCoveredBelow = 0.0;  // every other ray
+    EXPECT_EQ(traceClosest<double>(input, down)->triangle, upper);
+    packed[upper].v2.w = 0.0f;  // unmarked: hit within the window too
+    down.passCoveredBelow = 1.5;
+    EXPECT_EQ(traceClosest<double>(TraversalInput{bvh.nodes, packed}, down)->triangle, upper);
+}
+
 TEST(Bvh, Empty) {
     const Bvh bvh = buildBvh({});
     Ray<float> ray{{0, 0, -1}, {0, 0, 1}};
