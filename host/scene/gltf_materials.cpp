@@ -433,6 +433,14 @@ int GltfMaterials::alphaTexture(const tinygltf::TextureInfo& info, double alphaF
     }
     if (std::all_of(texture.texels.begin(), texture.texels.end(), [](glm::vec3 t) { return t.x >= 1.0f; }))
         return alphaTextures_[key] = -1;  // 1 or more everywhere
+    // A texture of its own on the device, beside the colour's: it must fit what is left, as a
+    // decoded image must (alphaOf may not have decoded it again).
+    try {
+        texelLimit_.leftAfter(scene_).check(texture.path, "its alpha", std::uint64_t(texture.width),
+                                            std::uint64_t(texture.height));
+    } catch (const ImageTooLarge& e) {
+        fail(quoted + ": baseColorTexture " + e.what());
+    }
     const int index = int(scene_.textures.size());
     scene_.textures.push_back(std::move(texture));
     return alphaTextures_[key] = index;

@@ -1046,6 +1046,37 @@ TEST_F(GltfLoader, ABlendedMaterialIsPartlyThereByItsAlpha) {
     EXPECT_TRUE(features.partialCoverage && features.cutouts && features.textures);
 }
 
+// A blended material's alpha is a texture of its own on the device, beside its colour: with the
+// colour's texels held, it must fit what the texel limit leaves, or the file is refused naming
+// the limit, as an image too large is.
+TEST_F(GltfLoader, ABlendedMaterialsAlphaCountsAgainstTheTexelLimit) {
+    GltfBuilder b;
+    const std::vector<unsigned char> rgba = {255, 0, 0, 0, 0, 255, 0, 127, 0, 0, 255, 128, 9, 9, 9, 255};
+    b.doc()["images"] = json::array({{{"uri", "data:image/png;base64," + base64(pngWithAlpha(2, 2, 4, rgba))}}});
+    b.doc()["textures"] = json::array({{{"source", 0}}});
+    const int uvs = b.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, 5126, "VEC2", 3);
+    json pbr = {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.0}};
+    b.node(
+        {{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}, {"TEXCOORD_0", uvs}}},
+                          {"material",
+                           b.material({{"name", "lace"}, {"alphaMode", "BLEND"}, {"pbrMetallicRoughness", pbr}})}})}});
+    const fs::path file = b.write(dir_ / "limit.gltf");
+    // Colour, coverage and the cut where alpha is 0: three textures of 4 texels, 16 bytes each.
+    SceneLoadOptions enough;
+    enough.texelLimit = TexelLimit{3 * 4 * 16, "192 bytes"};
+    EXPECT_EQ(loadScene(file, enough).textures.size(), 3u);
+    SceneLoadOptions tight;
+    tight.texelLimit = TexelLimit{3 * 4 * 16 - 1, "the test's device allows 191 bytes"};
+    try {
+        loadScene(file, tight);
+        ADD_FAILURE() << "loaded beyond the texel limit";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("its alpha of 2x2 pixels does not fit the device"), std::string::npos) << message;
+        EXPECT_NE(message.find("the test's device allows 191 bytes"), std::string::npos) << message;
+    }
+}
+
 // tinygltf passes material extensions' values on unchecked: one of the wrong type is refused,
 // naming the material, the extension and the value, never read as absent (a transmissionFactor
 // "1" read as 0 would be plastic).
