@@ -108,9 +108,9 @@ private:
             entries_.push_back(MtlEntry{.name = std::string(words[1]), .line = line_});
             return;
         }
-        static constexpr std::string_view kUsedKeys[] = {"Ka",       "Kd",    "Ks",          "Tf",     "Ns",
-                                                         "Ni",       "illum", "shader",      "map_Kd", "map_d",
-                                                         "priority", "Vd",    "thin_walled", "tint"};
+        static constexpr std::string_view kUsedKeys[] = {
+            "Ka",     "Kd",    "Ks",       "Tf", "Ns",          "Ni",   "illum",    "shader",
+            "map_Kd", "map_d", "priority", "Vd", "thin_walled", "tint", "coverage", "map_coverage"};
         if (std::find(std::begin(kUsedKeys), std::end(kUsedKeys), key) == std::end(kUsedKeys)) return;
         if (entries_.empty()) {
             warn(path_.string() + ":" + std::to_string(line_) + ": " + std::string(key) + " before any newmtl ignored");
@@ -137,17 +137,30 @@ private:
             m.vd = scalar(key, words, rest);
         else if (key == "priority")
             m.priority = integer(key, words, rest);
-        else if (key == "thin_walled") {
+        else if (key == "coverage") {
+            m.coverage = scalar(key, words, rest);
+            m.coverageLine = line_;
+        } else if (key == "thin_walled") {
             m.thinWalled = integer(key, words, rest);
             if (*m.thinWalled != 0 && *m.thinWalled != 1) fail("thin_walled expects 0 or 1, got " + quoteInput(rest));
         } else if (key == "shader") {
             m.shader = integer(key, words, rest);
             m.shaderLine = line_;
-        } else {  // map_Kd or map_d [options] file: options start with '-'; otherwise the whole rest may hold spaces
+        } else {  // map_Kd, map_d or map_coverage [options] file: options start with '-'; otherwise the whole rest may
+                  // hold spaces
             if (words.size() < 2) fail(std::string(key) + " expects a file name");
             bool hasOptions = std::any_of(words.begin() + 1, words.end(), [](auto w) { return w.front() == '-'; });
-            (key == "map_Kd" ? m.mapKd : m.mapD) = std::string(hasOptions ? words.back() : rest);
-            (key == "map_Kd" ? m.mapKdLine : m.mapDLine) = line_;
+            const std::string file(hasOptions ? words.back() : rest);
+            if (key == "map_Kd") {
+                m.mapKd = file;
+                m.mapKdLine = line_;
+            } else if (key == "map_d") {
+                m.mapD = file;
+                m.mapDLine = line_;
+            } else {
+                m.mapCoverage = file;
+                m.mapCoverageLine = line_;
+            }
         }
     }
 

@@ -22,6 +22,12 @@ struct MtlEntry {
     int mapKdLine = 0;
     std::optional<std::string> mapD;  // map_d: the cut-out mask, as written
     int mapDLine = 0;
+    // vitrum's partial coverage (render-model-decisions.md, "Partial coverage"): `coverage`, the
+    // share of the surface that is there, and `map_coverage`, a map of it, as written.
+    std::optional<float> coverage;
+    int coverageLine = 0;
+    std::optional<std::string> mapCoverage;
+    int mapCoverageLine = 0;
 };
 
 // Throws InputError for a file that cannot be read or a malformed value ("file.mtl:7: Kd expects

@@ -22,6 +22,7 @@
 #include "scene/mtl_material.h"
 #include "scene/mtl_parser.h"
 #include "scene/quote_input.h"
+#include "scene/scene_names.h"
 
 namespace vitrum {
 namespace {
@@ -470,19 +471,20 @@ std::vector<ObjPart> readParts(const fs::path& file, const std::string& text, st
     return read;
 }
 
-// map_d's mask (render-model-decisions.md, "Cut-out surfaces"): the image's alpha where it has an
-// alpha channel, else its grey level as stored (the mean of its channels re-encoded to sRGB: a
-// mask holds data, not colour); the surface is cut where it is below 1/2, glTF's default
-// cutoff, so Material::cutout holds twice it. The scalar `d` is not read (course files give
-// opaque materials `d 0`).
-std::vector<glm::vec3> cutoutTexels(Image& image) {
+// A grey map's values times `scale`: the image's alpha where it has an alpha channel, else its
+// grey level as stored (the mean of its channels re-encoded to sRGB: a mask holds data, not
+// colour). map_d's mask (render-model-decisions.md, "Cut-out surfaces") cuts the surface where it
+// is below 1/2, glTF's default cutoff, so Material::cutout holds twice it; map_coverage's values
+// are the share of the surface that is there ("Partial coverage"). The scalar `d` is not read
+// (course files give opaque materials `d 0`).
+std::vector<glm::vec3> greyTexels(const Image& image, float scale) {
     std::vector<glm::vec3> texels;
     texels.reserve(image.pixels.size());
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
         const glm::vec3& c = image.pixels[i];
         const float value =
             image.alpha.empty() ? (linearToSrgb(c.x) + linearToSrgb(c.y) + linearToSrgb(c.z)) / 3.0f : image.alpha[i];
-        texels.push_back(glm::vec3(2.0f * value));
+        texels.push_back(glm::vec3(scale * value));
     }
     return texels;
 }
@@ -522,14 +524,46 @@ const ObjLoader::Library& ObjLoader::library(const fs::path& mtlFile) {
                  ": map_d of a glass volume ignored (its closed surface bounds its medium)");
         else if (entry.mapD)
             material.cutout = texture(imageFile(*entry.mapD), mtlFile, entry.mapDLine, "map_d", "mask",
-                                      "the surface is not cut", cutoutTexels);
+                                      "the surface is not cut", [](Image& image) { return greyTexels(image, 2.0f); });
+        if (entry.coverage || entry.mapCoverage) material.coverage = coverage(entry, mtlFile, material, imageFile);
         library[entry.name] = std::uint32_t(scene_.materials.size());
         scene_.materials.push_back(std::move(material));
     }
     return libraries_[key] = std::move(library);
 }
 
-// An MTL's image, map_Kd's or map_d's (`key`), made into a texture by `texels`; read once per
+// The partly covered share of an MTL material (`coverage`, `map_coverage`; render-model-decisions.md,
+// "Partial coverage"): a texture, or -1 where the surface is all there or its model has no
+// coverage (warned).
+int ObjLoader::coverage(const MtlEntry& entry, const fs::path& mtlFile, const Material& material,
+                        const std::function<fs::path(std::string)>& imageFile) {
+    const int line = entry.mapCoverage ? entry.mapCoverageLine : entry.coverageLine;
+    const std::string where = mtlFile.string() + ":" + std::to_string(line) + ": ";
+    if (material.model != MaterialModel::Lambert && material.model != MaterialModel::Phong &&
+        material.model != MaterialModel::Mirror) {
+        warn(where + "coverage of a " + std::string(materialModelName(material.model)) +
+             " ignored (only Lambert, Phong and mirror surfaces are partly there)");
+        return -1;
+    }
+    if (entry.mapCoverage) {
+        if (entry.coverage)
+            warn(mtlFile.string() + ":" + std::to_string(entry.coverageLine) +
+                 ": coverage ignored beside map_coverage");
+        return texture(imageFile(*entry.mapCoverage), mtlFile, line, "map_coverage", "coverage map",
+                       "the surface is all there", [](Image& image) { return greyTexels(image, 1.0f); });
+    }
+    float share = *entry.coverage;
+    if (!(share >= 0.0f && share <= 1.0f)) {
+        warn(where + "coverage " + std::to_string(share) + " outside [0, 1]; kept within it");
+        share = std::isnan(share) ? 1.0f : std::clamp(share, 0.0f, 1.0f);
+    }
+    if (share == 1.0f) return -1;
+    const int index = int(scene_.textures.size());
+    scene_.textures.push_back(Texture{where + "coverage", 1, 1, {glm::vec3(share)}});
+    return index;
+}
+
+// An MTL's image, map_Kd's, map_d's or map_coverage's (`key`), made into a texture by `texels`; read once per
 // file and key. Where it cannot be read, -1, warned once naming `what` it is and the `fallback`;
 // beyond the texel limit the scene is refused, naming the MTL line.
 int ObjLoader::texture(const fs::path& imageFile, const fs::path& mtlFile, int line, const std::string& key,

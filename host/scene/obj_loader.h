@@ -20,6 +20,8 @@
 
 namespace vitrum {
 
+struct MtlEntry;
+
 struct ObjOptions {
     std::optional<std::filesystem::path> mtlOverride;  // replaces the OBJ's own mtllib
     glm::mat4 transform{1.0f};                         // object to world; must be invertible
@@ -43,6 +45,8 @@ private:
     int texture(const std::filesystem::path& imageFile, const std::filesystem::path& mtlFile, int line,
                 const std::string& key, const std::string& what, const std::string& fallback,
                 const std::function<std::vector<glm::vec3>(Image&)>& texels);
+    int coverage(const MtlEntry& entry, const std::filesystem::path& mtlFile, const Material& material,
+                 const std::function<std::filesystem::path(std::string)>& imageFile);
     std::uint32_t defaultMaterialIndex();
 
     Scene& scene_;

@@ -595,6 +595,48 @@ TEST(SceneMtl, MapDCutsTheSurfaceWhereTheMaskIsBelowOneHalf) {
     EXPECT_TRUE(analyseScene(scene).cutouts);
 }
 
+// vitrum's MTL keys for partial coverage (render-model-decisions.md, "Partial coverage"):
+// `coverage a`, a share of the surface there everywhere (one texel), and `map_coverage`, a grey
+// map read as map_d's is but not doubled (its alpha where it has one, else its grey level as
+// stored). Only Lambert, Phong and mirror surfaces are partly there; a value outside [0, 1] is
+// kept within it; the map wins beside the scalar; each with a warning.
+TEST(SceneMtl, CoverageAndMapCoverageMakeASurfacePartlyThere) {
+    fs::path dir = tempDir();
+    const std::uint8_t grey[4] = {0, 100, 128, 255}, rgba[8] = {9, 9, 9, 200, 9, 9, 9, 60};
+    ASSERT_NE(stbi_write_png((dir / "grey.png").string().c_str(), 4, 1, 1, grey, 4), 0);
+    ASSERT_NE(stbi_write_png((dir / "rgba.png").string().c_str(), 2, 1, 4, rgba, 8), 0);
+    write(dir / "t.mtl",
+          "newmtl gauze\nshader 2\ncoverage 0.25\n"
+          "newmtl lace\nshader 3\nmap_coverage grey.png\n"
+          "newmtl smoke\nshader 6\nmap_coverage -imfchan m rgba.png\ncoverage 0.5\n"
+          "newmtl whole\nshader 3\ncoverage 1\n"
+          "newmtl beyond\nshader 2\ncoverage 1.5\n"
+          "newmtl glass\nshader 4\ncoverage 0.5\n");
+    write(dir / "t.obj",
+          "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl gauze\nf 1 2 3\nusemtl lace\nf 1 2 3\n"
+          "usemtl smoke\nf 1 2 3\nusemtl whole\nf 1 2 3\nusemtl beyond\nf 1 2 3\nusemtl glass\nf 1 2 3\n");
+    const int before = warningCount();
+    const Scene scene = loadScene(dir / "t.obj");
+    EXPECT_EQ(warningCount(), before + 3);  // smoke's scalar beside its map, beyond's 1.5, the glass
+    auto values = [&](const std::string& name) {
+        std::vector<float> v;
+        const int coverage = materialNamed(scene, name).coverage;
+        if (coverage >= 0)
+            for (const glm::vec3& texel : scene.textures[std::size_t(coverage)].texels) v.push_back(texel.x);
+        return v;
+    };
+    EXPECT_EQ(values("gauze"), std::vector<float>{0.25f});
+    const std::vector<float> lace = values("lace");
+    ASSERT_EQ(lace.size(), 4u);
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(lace[std::size_t(i)], grey[i] / 255.0, 1e-6) << i;
+    EXPECT_EQ(values("smoke"), (std::vector<float>{200 / 255.0f, 60 / 255.0f})) << "the map, not the 0.5";
+    EXPECT_EQ(materialNamed(scene, "whole").coverage, -1);
+    EXPECT_EQ(values("beyond"), std::vector<float>{}) << "1.5 kept within [0, 1] is all there";
+    EXPECT_EQ(materialNamed(scene, "glass").coverage, -1);
+    EXPECT_EQ(materialNamed(scene, "lace").cutout, -1) << "no holes of its own: map_d cuts";
+    EXPECT_TRUE(analyseScene(scene).partialCoverage);
+}
+
 TEST(SceneMtl, KsTypoReadsAsOneWithOneWarningPerFile) {
     for (const char* file : {"box_sphere/box_sphere.mtl", "allied_avenger_6887/6887_allied_avenger.mtl"}) {
         std::vector<MtlEntry> entries = parseMtlFile(course(file));
