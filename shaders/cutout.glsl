@@ -13,9 +13,7 @@
 
 // Whether triangle `triangle` (marked `mark`) is cut away at barycentrics (u, v) of v1 and v2.
 bool cutAway(uint triangle, uint mark, vec2 barycentrics) {
-    // As shading.glsl reads map_Kd: at (u, 1 - v), wrapping.
-    vec2 uv = interpolatedUv(triangle, barycentrics);
-    return sampleTexture(mark & kTriangleCutoutTexture, vec2(uv.x, 1.0 - uv.y), true, true).x < 1.0;
+    return sampleMeshTexture(mark & kTriangleCutoutTexture, interpolatedUv(triangle, barycentrics)).x < 1.0;
 }
 
 #endif

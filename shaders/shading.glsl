@@ -114,8 +114,7 @@ PendingRay childRay(vec3 origin, vec3 direction, vec3 weight, uvec4 media, uint 
 void coverSurface(GpuMaterial m) {
     uint texture = floatBitsToUint(m.coverage.x);
     if (texture == kNoTexture) return;
-    float alpha = sampleTexture(texture, vec2(st.hit.uv.x, 1.0 - st.hit.uv.y), true, true).x;
-    alpha = min(max(alpha, 0.0), 1.0);
+    float alpha = min(max(sampleMeshTexture(texture, st.hit.uv).x, 0.0), 1.0);
     vec3 passing = st.ray.weight.xyz * (1.0 - alpha);
     uint depth = rayDepth(st.ray);
     if (alpha < 1.0 && admitChild(depth + 1u, passing)) {
@@ -237,7 +236,7 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
 vec3 diffuseColour(GpuMaterial m) {
     uint texture = floatBitsToUint(m.diffuse.w);
     return !kTextures || texture == kNoTexture ? m.diffuse.xyz
-                                 : sampleTexture(texture, vec2(st.hit.uv.x, 1.0 - st.hit.uv.y), true, true);
+                                 : sampleMeshTexture(texture, st.hit.uv);
 }
 
 // The visibility-weighted part of light `index` at the hit: m_d max(0, n.l) (+ Phong's
@@ -300,9 +299,9 @@ bool spawnsRays() {
 // mirror, a Phong surface with Schlick's weight, glass or thin glass), or through an
 // index-matched glass interface the same ray with the new medium stack; only a glass hit's
 // refraction (a thin glass's transmission) waits on the pending-ray stack, so it has one store
-// site here (docs/gpu-design.md, "The ray tree"; the other is coverSurface's). The materials share one reflection, from the
-// normals on the incoming ray's side: lavapipe runs every material's code every round
-// (docs/gpu-design.md, "One shading round, fewer copies of its code").
+// site here (docs/gpu-design.md, "The ray tree"; the other is coverSurface's). The materials
+// share one reflection, from the normals on the incoming ray's side: lavapipe runs every
+// material's code every round (docs/gpu-design.md, "One shading round, fewer copies of its code").
 void scatter(GpuMaterial m) {
     uint model = materialModel(m);
     bool glass = usesMaterial(kMaterialGlass) && model == kMaterialGlass;

@@ -43,4 +43,9 @@ vec3 sampleTexture(uint index, vec2 uv, bool wrapU, bool wrapV) {
     return ieeeMix(top, bottom, fy);
 }
 
+// A mesh texture (map_Kd, a cutout or coverage texture) at a surface's texture coordinates: read at
+// (u, 1 - v), wrapping in both (render-model-decisions.md, "Texture coordinates"), as the CPU
+// reference's sampling::sampleMeshTexture reads it.
+vec3 sampleMeshTexture(uint index, vec2 uv) { return sampleTexture(index, vec2(uv.x, 1.0 - uv.y), true, true); }
+
 #endif

@@ -93,10 +93,7 @@ private:
     template <class Real>
     bool cut(std::uint32_t triangle, std::uint32_t mark, Real u, Real v) const {
         const glm::vec<2, Real> uv = uvAt(scene_.triangles[bvh_.triangleOrder[triangle]], u, v);
-        const Texture& texture = scene_.textures[mark & gpu::kTriangleCutoutTexture];
-        return sampling::sampleTexture<Real>(texture, uv.x, Real(1) - uv.y, scene_.settings.filter,
-                                             sampling::Address::Wrap, sampling::Address::Wrap)
-                   .x < Real(1);
+        return sampling::sampleMeshTexture<Real>(scene_, int(mark & gpu::kTriangleCutoutTexture), uv).x < Real(1);
     }
 
     const Scene& scene_;
@@ -317,11 +314,7 @@ private:
     // The share of an opaque surface that is there at uv (Material::coverage), within [0, 1].
     Real coverage(const Material& m, const glm::vec<2, Real>& uv) const {
         if (!hasPartialCoverage(m)) return Real(1);
-        const Real alpha =
-            sampling::sampleTexture<Real>(scene_.textures[std::size_t(m.coverage)], uv.x, Real(1) - uv.y,
-                                          scene_.settings.filter, sampling::Address::Wrap, sampling::Address::Wrap)
-                .x;
-        return std::clamp(alpha, Real(0), Real(1));
+        return std::clamp(sampling::sampleMeshTexture<Real>(scene_, m.coverage, uv).x, Real(0), Real(1));
     }
 
     // An opaque surface where it is there, with normals facing the ray.
@@ -394,8 +387,7 @@ private:
     // "Geometry and camera"); filtered as the scene asks (bilinear by default).
     Color diffuseColour(const Material& m, const glm::vec<2, Real>& uv) const {
         if (m.diffuseTexture < 0 || std::size_t(m.diffuseTexture) >= scene_.textures.size()) return Color(m.diffuse);
-        return sampling::sampleTexture<Real>(scene_.textures[std::size_t(m.diffuseTexture)], uv.x, Real(1) - uv.y,
-                                             scene_.settings.filter, sampling::Address::Wrap, sampling::Address::Wrap);
+        return sampling::sampleMeshTexture<Real>(scene_, m.diffuseTexture, uv);
     }
 
     // C_refl of an opaque surface: the reflected ray keeps the medium stack.

@@ -89,6 +89,15 @@ CubeUv<Real> cubeUv(const glm::vec<3, Real>& d) {
     return {face, (au / m + Real(1)) / Real(2), (av / m + Real(1)) / Real(2)};
 }
 
+// A mesh texture (map_Kd, a cutout or coverage texture) at a surface's texture coordinates: read at
+// (u, 1 - v), wrapping in both (render-model-decisions.md, "Texture coordinates"), as the kernel's
+// sampleMeshTexture reads it.
+template <class Real>
+glm::vec<3, Real> sampleMeshTexture(const Scene& scene, int texture, const glm::vec<2, Real>& uv) {
+    return sampleTexture<Real>(scene.textures[std::size_t(texture)], uv.x, Real(1) - uv.y, scene.settings.filter,
+                               Address::Wrap, Address::Wrap);
+}
+
 // The background seen along the unit direction d.
 template <class Real>
 glm::vec<3, Real> backgroundRadiance(const Scene& scene, const glm::vec<3, Real>& d) {

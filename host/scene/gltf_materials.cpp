@@ -250,7 +250,7 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
     } else if (g.alphaMode == "BLEND") {
         // Partial coverage (render-model-decisions.md, "Partial coverage"): alpha of the surface
         // is there; where none of it is (alpha 0, below half the least 8-bit step), it is cut away.
-        if (m.model == MaterialModel::Glass || m.model == MaterialModel::ThinGlass) {
+        if (!canBePartlyCovered(m.model)) {
             ignored.push_back("alphaMode BLEND (a glass is all there: its transmission is what passes)");
         } else {
             m.coverage = alphaTexture(alphaSource, alphaFactor, 1.0, index, quoted, ignored);
@@ -365,7 +365,8 @@ fs::path GltfMaterials::imageName(int source) const {
                : file_.parent_path() / uriPath(image.uri);
 }
 
-// The file's images[source], decoded within what the device leaves for textures.
+// The file's images[source], decoded within what the device leaves for textures; its alpha
+// channel moves to lastAlpha_ (alphaOf), so that a masked or blended material decodes it once.
 Image GltfMaterials::decodeSource(int source, const std::string& quoted) {
     const tinygltf::Image& image = model_.images[std::size_t(source)];
     const fs::path name = imageName(source);
@@ -381,7 +382,7 @@ Image GltfMaterials::decodeSource(int source, const std::string& quoted) {
         Image decoded = image.as_is ? decodeImage(name, image.image, texelLimit_.leftAfter(scene_))
                         : dataUri   ? decodeImage(name, std::move(*dataUri), texelLimit_.leftAfter(scene_))
                                     : readImage(name, texelLimit_.leftAfter(scene_));
-        lastAlpha_ = {source, decoded.width, decoded.height, decoded.alpha};
+        lastAlpha_ = {source, decoded.width, decoded.height, std::move(decoded.alpha)};
         return decoded;
     } catch (const ImageTooLarge& e) {
         fail(quoted + ": baseColorTexture " + e.what());
@@ -446,8 +447,8 @@ int GltfMaterials::alphaTexture(const tinygltf::TextureInfo& info, double alphaF
     return alphaTextures_[key] = index;
 }
 
-// The alpha channel of image `source` (empty where it has none). The image last decoded keeps
-// its alpha, so that a masked or blended material's colour and alpha decode it once.
+// The alpha channel of image `source` (empty where it has none), decoding the image unless it
+// was the last one decoded.
 const std::vector<float>& GltfMaterials::alphaOf(int source, const std::string& quoted) {
     if (lastAlpha_.source != source) decodeSource(source, quoted);
     return lastAlpha_.alpha;

@@ -539,8 +539,7 @@ int ObjLoader::coverage(const MtlEntry& entry, const fs::path& mtlFile, const Ma
                         const std::function<fs::path(std::string)>& imageFile) {
     const int line = entry.mapCoverage ? entry.mapCoverageLine : entry.coverageLine;
     const std::string where = mtlFile.string() + ":" + std::to_string(line) + ": ";
-    if (material.model != MaterialModel::Lambert && material.model != MaterialModel::Phong &&
-        material.model != MaterialModel::Mirror) {
+    if (!canBePartlyCovered(material.model)) {
         warn(where + "coverage of a " + std::string(materialModelName(material.model)) +
              " ignored (only Lambert, Phong and mirror surfaces are partly there)");
         return -1;
@@ -563,8 +562,8 @@ int ObjLoader::coverage(const MtlEntry& entry, const fs::path& mtlFile, const Ma
     return index;
 }
 
-// An MTL's image, map_Kd's, map_d's or map_coverage's (`key`), made into a texture by `texels`; read once per
-// file and key. Where it cannot be read, -1, warned once naming `what` it is and the `fallback`;
+// An MTL's image, map_Kd's, map_d's or map_coverage's (`key`), made into a texture by `texels`;
+// read once per file and key. Where it cannot be read, -1, warned once naming `what` it is and the `fallback`;
 // beyond the texel limit the scene is refused, naming the MTL line.
 int ObjLoader::texture(const fs::path& imageFile, const fs::path& mtlFile, int line, const std::string& key,
                        const std::string& what, const std::string& fallback,

@@ -72,13 +72,13 @@ struct Material {
 // whose closed surface bounds its medium.
 inline bool hasCutouts(const Material& m) { return m.cutout >= 0 && m.model != MaterialModel::Glass; }
 
-// Whether the material's surfaces are partly there (Material::coverage): Lambert, Phong and
+// Whether surfaces of a model can be partly there (Material::coverage): Lambert, Phong and
 // mirrors; a glass's or thin glass's coverage is not read (docs/render-model-decisions.md,
 // "Partial coverage").
-inline bool hasPartialCoverage(const Material& m) {
-    return m.coverage >= 0 &&
-           (m.model == MaterialModel::Lambert || m.model == MaterialModel::Phong || m.model == MaterialModel::Mirror);
+inline bool canBePartlyCovered(MaterialModel model) {
+    return model == MaterialModel::Lambert || model == MaterialModel::Phong || model == MaterialModel::Mirror;
 }
+inline bool hasPartialCoverage(const Material& m) { return m.coverage >= 0 && canBePartlyCovered(m.model); }
 
 struct Triangle {
     glm::vec3 position[3];

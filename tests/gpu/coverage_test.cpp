@@ -210,8 +210,8 @@ TEST(Coverage, ABoxHalfThereStandingOnAFloorShowsTheFloorThroughItsBottom) {
     const RenderPair lifted = renderBoth(coveredBoxOnFloor(1e-3f));
     expectImagesMatch(standing);
     EXPECT_GT(standing.gpuStats.passThroughRays, 0u);
-    // Pixels more than 1e-4 apart: where a ray passes within 1e-3 of the box's bottom edge, the
-    // lifted box is another picture (one pixel of 1200 here).
+    // Pixels more than 1e-4 apart: a ray passing within 1e-3 of the box's bottom edge sees
+    // another picture of the lifted box, so an edge pixel or two may differ.
     auto apart = [](const Image& a, const Image& b) {
         std::size_t n = 0;
         for (std::size_t i = 0; i < a.pixels.size(); ++i)
@@ -222,7 +222,7 @@ TEST(Coverage, ABoxHalfThereStandingOnAFloorShowsTheFloorThroughItsBottom) {
     EXPECT_LE(apart(standing.cpu, lifted.cpu), 2u);
     RenderStats doubleStats;
     const Image inDouble = renderReference(scene, buildSceneBvh(scene), {.doublePrecision = true}, doubleStats);
-    EXPECT_LE(apart(standing.cpu, inDouble), 0u);
+    EXPECT_EQ(apart(standing.cpu, inDouble), 0u);
     expectTheGeneralKernelAgrees(scene, standing);
 }
 

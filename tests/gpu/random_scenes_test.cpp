@@ -287,9 +287,7 @@ private:
     void addCoverage(Scene& scene) {
         std::vector<std::size_t> candidates;
         for (std::size_t i = 0; i < scene.materials.size(); ++i)
-            if (MaterialModel m = scene.materials[i].model;
-                m == MaterialModel::Lambert || m == MaterialModel::Phong || m == MaterialModel::Mirror)
-                candidates.push_back(i);
+            if (canBePartlyCovered(scene.materials[i].model)) candidates.push_back(i);
         if (candidates.empty()) return;
         const std::size_t material =
             candidates[std::uniform_int_distribution<std::size_t>(0, candidates.size() - 1)(rng_)];
