@@ -112,7 +112,7 @@ PendingRay childRay(vec3 origin, vec3 direction, vec3 weight, uvec4 media, uint 
 // so that a surface lying on this one is met beyond it, and passes partly covered triangles by
 // until twice where it crosses this one's plane (its weight.w, which bvh.glsl's traversal reads).
 void coverSurface(GpuMaterial m) {
-    uint texture = floatBitsToUint(m.coverage.x);
+    uint texture = floatBitsToUint(m.parts.x);
     if (texture == kNoTexture) return;
     float alpha = min(max(sampleMeshTexture(texture, st.hit.uv).x, 0.0), 1.0);
     vec3 passing = st.ray.weight.xyz * (1.0 - alpha);
@@ -135,9 +135,21 @@ void coverSurface(GpuMaterial m) {
     st.ray.weight.xyz *= alpha;
 }
 
-// The closest-hit traversal of st.ray is over: record the hit (triangle `tri`, material `m`, both
-// read by traceUnit) or take the background.
-void finishTrace(TriangleVertices tri, GpuMaterial m) {
+// A glass with a transmission texture (glTF's transmissionTexture; Material::transmissionTexture)
+// is glass only where that grey texture, read at the hit's uv as map_Kd is, is 1 or more, and its
+// opaque part elsewhere (render-model-decisions.md, "Transmission textures"; the CPU reference's
+// describeHit): the material that a hit of `triangle` at `barycentrics` shows.
+uint shownMaterial(uint material, uint triangle, vec2 barycentrics) {
+    vec4 parts = fetchVec4(materialTexels, kGpuMaterialTexels * material, 4u);
+    uint texture = floatBitsToUint(parts.y);
+    if (texture == kNoTexture) return material;
+    bool opaque = sampleMeshTexture(texture, interpolatedUv(triangle, barycentrics)).x < 1.0;
+    return opaque ? floatBitsToUint(parts.z) : material;
+}
+
+// The closest-hit traversal of st.ray is over: record the hit (triangle `tri`, the material
+// `material` it shows, `m`, all read by traceUnit) or take the background.
+void finishTrace(TriangleVertices tri, uint material, GpuMaterial m) {
     uint triangle = st.traversal.closest;
     // Beer-Lambert over the segment just travelled (render model: "Media: the IOR stack").
     vec3 mu = mediumAttenuation(st.ray);
@@ -204,7 +216,7 @@ void finishTrace(TriangleVertices tri, GpuMaterial m) {
     st.hit.position = position;
     st.hit.t = t;
     st.hit.shadingNormal = shadingNormal;
-    st.hit.material = floatBitsToUint(tri.v0.w);
+    st.hit.material = material;
     st.hit.geometricNormal = geometricNormal;
     st.hit.object = object;
     if (kTextures) st.hit.uv = interpolatedUv(triangle, bary);  // only texture lookups read it

@@ -31,6 +31,7 @@ layout(constant_id = kConstantInstancing) const bool kInstancing = true;  // the
 layout(constant_id = kConstantGlassTints) const bool kGlassTints = true;  // some glass tints what crosses its surface
 layout(constant_id = kConstantCutouts) const bool kCutouts = true;  // some surface has cut-out parts (Material::cutout)
 layout(constant_id = kConstantPartialCoverage) const bool kPartialCoverage = true;  // some surface is partly there (Material::coverage)
+layout(constant_id = kConstantTransmissionTextures) const bool kTransmissionTextures = true;  // some glass is glass only where a texture says
 // Not a scene feature but the kernel's role (shaders/suspend.glsl): the first dispatch of a tile
 // runs without it and gives up the pixels that need more than one dispatch; the resumable kernel
 // restarts them and suspends them between dispatches.

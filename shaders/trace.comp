@@ -84,10 +84,11 @@ uint traceUnit(uint unit, inout StatisticSums total, inout uvec3 totalMaxima) {
             if (phase == kPhaseTrace && st.traversal.closest != kNoTriangle) {
                 tri = loadTriangle(st.traversal.closest);
                 material = floatBitsToUint(tri.v0.w);
+                if (kTransmissionTextures) material = shownMaterial(material, st.traversal.closest, st.traversal.barycentrics);
             }
             GpuMaterial m = loadMaterial(material);
             if (phase == kPhaseShadow) finishShadow();
-            else if (phase == kPhaseTrace) finishTrace(tri, m);
+            else if (phase == kPhaseTrace) finishTrace(tri, material, m);
             if (st.phase == kPhaseNextLight) nextLight(m);  // may begin a shadow traversal
             if (spawnsRays() && st.phase == kPhaseScatter) scatter(m);
             if (st.phase == kPhaseNextRay) nextRay();  // begins a traversal or ends the sample

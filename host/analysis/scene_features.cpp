@@ -204,13 +204,20 @@ double sceneDiagonal(const std::vector<Triangle>& triangles) {
 
 SceneFeatures analyseScene(const Scene& scene, std::size_t flatAnalysisTriangles) {
     SceneFeatures f;
-    for (const Triangle& t : scene.triangles) f.materialModels |= 1u << std::uint32_t(scene.materials[t.material].model);
+    // The materials hits can show: the triangles', and the opaque parts of those glass only where
+    // a transmission texture says so.
     std::set<std::uint32_t> used;
     for (const Triangle& t : scene.triangles) used.insert(t.material);
+    for (const Triangle& t : scene.triangles)
+        if (const Material& m = scene.materials[t.material]; hasTransmissionTexture(m))
+            used.insert(std::uint32_t(m.opaquePart));
     std::set<int> glassPriorities;
     for (std::uint32_t index : used) {
         const Material& m = scene.materials[index];
+        f.materialModels |= 1u << std::uint32_t(m.model);
         if (hasCutouts(m)) f.cutouts = true;
+        // Which material a hit shows is read at its uv (render-model-decisions.md, "Transmission textures").
+        if (hasTransmissionTexture(m)) f.transmissionTextures = f.textures = true;
         // A partly covered surface's rays go on through it as children, read at its uv.
         if (hasPartialCoverage(m)) f.partialCoverage = f.reflection = f.textures = true;
         switch (m.model) {
@@ -337,6 +344,7 @@ std::vector<std::string> SceneFeatures::describe() const {
         std::string("tinted glass surfaces: ") + yesNo(glassTints),
         std::string("cut-out surfaces (alpha masks): ") + yesNo(cutouts),
         std::string("partly covered surfaces (alpha blending): ") + yesNo(partialCoverage),
+        std::string("glass only where a transmission texture says: ") + yesNo(transmissionTextures),
         std::string("touching glass surfaces possible: ") + yesNo(touchingMediaPossible),
         std::string("glass resting on opaque surfaces possible: ") + yesNo(opaqueContactPossible),
         std::string("coincident opaque surfaces of two objects possible: ") + yesNo(coincidentOpaquePossible),
@@ -362,6 +370,7 @@ nlohmann::json toJson(const SceneFeatures& f) {
         {"glass_tints", f.glassTints},
         {"cutouts", f.cutouts},
         {"partial_coverage", f.partialCoverage},
+        {"transmission_textures", f.transmissionTextures},
         {"touching_media_possible", f.touchingMediaPossible},
         {"opaque_contact_possible", f.opaqueContactPossible},
         {"coincident_opaque_possible", f.coincidentOpaquePossible},

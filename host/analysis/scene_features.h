@@ -21,7 +21,7 @@ namespace vitrum {
 constexpr double kTouchingTolerance = 1e-5;
 
 struct SceneFeatures {
-    std::uint32_t materialModels = 0;    // bit (1 << model) for every MaterialModel a triangle uses
+    std::uint32_t materialModels = 0;    // bit (1 << model) for every MaterialModel a hit can show
     bool glass = false;                  // refraction and a medium stack
     bool absorbingMedia = false;         // some glass has Tf != 0 (Beer-Lambert)
     // Glass materials of different priorities (MTL `priority`): where their media overlap, the
@@ -40,6 +40,11 @@ struct SceneFeatures {
     // Some opaque surface is partly there (Material::coverage, glTF's alphaMode BLEND): its hits
     // send a ray on through it (render-model-decisions.md, "Partial coverage").
     bool partialCoverage = false;
+    // Some glass is glass only where its transmission texture says so, and an opaque material
+    // elsewhere (Material::transmissionTexture, glTF's transmissionTexture): both backends read it
+    // at a hit to know which material the hit shows (render-model-decisions.md, "Transmission
+    // textures").
+    bool transmissionTextures = false;
     // Two triangles of different glass objects that may lie within twice the touching distance
     // of each other (analysis/glass_proximity.h): only then can a touching probe find anything, so
     // otherwise neither backend probes. Nested objects apart from each other need no probe.
@@ -58,7 +63,7 @@ struct SceneFeatures {
     bool coincidentOpaquePossible = false;
     bool reflection = false;             // some material spawns secondary rays (reflected, refracted, passing)
     bool shadowRays = false;             // lights and materials that use them (Lambert, Phong)
-    bool textures = false;               // some material samples a texture at a hit (map_Kd, coverage)
+    bool textures = false;               // some material samples a texture at a hit (map_Kd, coverage, transmission)
     BackgroundKind background = BackgroundKind::Constant;
     std::uint32_t glassObjects = 0;
     // Surfaces of different objects closer than this along a ray touch: kTouchingTolerance times

@@ -77,6 +77,10 @@ int infoCommand(int argc, char** argv, int first) {
         if (m.diffuseTexture >= 0) std::printf("  map_Kd %s", scene.textures[m.diffuseTexture].path.filename().c_str());
         if (hasCutouts(m)) std::printf("  cutout %s", scene.textures[m.cutout].path.filename().c_str());
         if (hasPartialCoverage(m)) std::printf("  coverage %s", scene.textures[m.coverage].path.filename().c_str());
+        if (hasTransmissionTexture(m))
+            std::printf("  transmission %s (elsewhere %s)",
+                        scene.textures[m.transmissionTexture].path.filename().c_str(),
+                        scene.materials[m.opaquePart].name.c_str());
         std::printf("\n");
     }
     // What the scene can need (analysis/scene_features.h).

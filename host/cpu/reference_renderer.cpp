@@ -264,9 +264,18 @@ private:
                                   : (shadingValid ? interpolated / length : -direction);
         hit.shadingNormal = shadingValid ? interpolated / length : hit.geometricNormal;
         hit.uv = uvAt(tri, found.u, found.v);
-        hit.material = &scene_.materials[tri.material];
+        hit.material = &shownMaterial(scene_.materials[tri.material], hit.uv);
         hit.object = objectOf(found);
         return hit;
+    }
+
+    // A glass with a transmission texture is glass only where the texture at the hit's uv is 1 or
+    // more, and its opaque part elsewhere (render-model-decisions.md, "Transmission textures"): the
+    // material a hit of `m` at `uv` shows.
+    const Material& shownMaterial(const Material& m, const glm::vec<2, Real>& uv) const {
+        if (!hasTransmissionTexture(m)) return m;
+        const bool opaque = sampling::sampleMeshTexture<Real>(scene_, m.transmissionTexture, uv).x < Real(1);
+        return opaque ? scene_.materials[std::size_t(m.opaquePart)] : m;
     }
 
     // Instances (gpu_types.h, "Instances"): a hit's point and normals move to the world, the

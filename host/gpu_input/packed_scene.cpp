@@ -41,12 +41,15 @@ PackedTables packTables(const Scene& scene) {
     for (const Material& m : scene.materials) {
         std::uint32_t texture = m.diffuseTexture >= 0 ? std::uint32_t(m.diffuseTexture) : gpu::kNoTexture;
         std::uint32_t coverage = hasPartialCoverage(m) ? std::uint32_t(m.coverage) : gpu::kNoTexture;
+        const bool switches = hasTransmissionTexture(m);
+        std::uint32_t transmission = switches ? std::uint32_t(m.transmissionTexture) : gpu::kNoTexture;
+        std::uint32_t opaquePart = switches ? std::uint32_t(m.opaquePart) : 0u;
         packed.materials.push_back({
             .ambient = glm::vec4(m.ambient, bits(std::uint32_t(m.model))),
             .diffuse = glm::vec4(m.diffuse, bits(texture)),
             .specular = glm::vec4(m.specular, m.shininess),
             .attenuation = glm::vec4(m.attenuation, m.ior),
-            .coverage = glm::vec4(bits(coverage), 0.0f, 0.0f, 0.0f),
+            .parts = glm::vec4(bits(coverage), bits(transmission), bits(opaquePart), 0.0f),
         });
     }
     // The kernel reads material 0 for lanes that are not at a hit (one fetch a round for all

@@ -68,10 +68,10 @@ private:
 };
 
 // Whether texture lookups read the triangle's uvs: its material's map_Kd, its cut-outs in the
-// traversal, or its partial coverage.
+// traversal, its partial coverage, or its transmission texture and its opaque part's map_Kd.
 bool textured(const Scene& scene, const Triangle& t) {
     const Material& m = scene.materials[t.material];
-    return m.diffuseTexture >= 0 || hasCutouts(m) || hasPartialCoverage(m);
+    return m.diffuseTexture >= 0 || hasCutouts(m) || hasPartialCoverage(m) || hasTransmissionTexture(m);
 }
 
 }  // namespace

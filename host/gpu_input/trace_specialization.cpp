@@ -30,6 +30,7 @@ TraceSpecialization TraceSpecialization::forScene(const Scene& scene, const Scen
     s.glassTints = f.glassTints;
     s.cutouts = f.cutouts;
     s.partialCoverage = f.partialCoverage;
+    s.transmissionTextures = f.transmissionTextures;
     s.instancing = !scene.instances.empty();
     s.textures = f.textures;
     s.backgroundKind = std::uint32_t(f.background);
@@ -64,6 +65,7 @@ TraceKernelConstants TraceSpecialization::constants() const {
     c[gpu::kConstantGlassTints] = glassTints ? 1u : 0u;
     c[gpu::kConstantCutouts] = cutouts ? 1u : 0u;
     c[gpu::kConstantPartialCoverage] = partialCoverage ? 1u : 0u;
+    c[gpu::kConstantTransmissionTextures] = transmissionTextures ? 1u : 0u;
     return c;
 }
 
@@ -99,6 +101,7 @@ std::vector<std::string> TraceSpecialization::describe() const {
         std::string("glass tints: ") + onOff(glassTints),
         std::string("cut-out surfaces: ") + onOff(cutouts),
         std::string("partly covered surfaces: ") + onOff(partialCoverage),
+        std::string("transmission textures: ") + onOff(transmissionTextures),
         std::string("instancing: ") + onOff(instancing),
         std::string("textures: ") + onOff(textures),
         "background: " + kindName(backgroundKind, backgroundKindName),
@@ -124,6 +127,7 @@ nlohmann::json toJson(const TraceSpecialization& s) {
         {"glass_tints", s.glassTints},
         {"cutouts", s.cutouts},
         {"partial_coverage", s.partialCoverage},
+        {"transmission_textures", s.transmissionTextures},
         {"instancing", s.instancing},
         {"textures", s.textures},
         {"background", kindName(s.backgroundKind, backgroundKindName)},

@@ -36,6 +36,7 @@ struct TraceSpecialization {
     bool glassTints = true;        // some glass tints what crosses its surface (SceneFeatures::glassTints)
     bool cutouts = true;           // some surface has cut-out parts (SceneFeatures::cutouts)
     bool partialCoverage = true;   // some surface is partly there (SceneFeatures::partialCoverage)
+    bool transmissionTextures = true;  // some glass is glass in parts (SceneFeatures::transmissionTextures)
     bool instancing = true;        // the scene has instances: a two-level BVH (Scene::instances)
     bool textures = true;
     std::uint32_t backgroundKind = kAnyKind;  // BackgroundKind or kAnyKind

@@ -14,6 +14,7 @@
 
 #include "common/error.h"
 #include "image/image.h"
+#include "image/srgb8_codes.h"
 #include "scene/mtl_material.h"
 #include "scene/quote_input.h"
 
@@ -25,6 +26,27 @@ namespace fs = std::filesystem;
 // alphaMode BLEND: alpha below half the least step of an 8-bit alpha is no surface at all, which
 // is cut away (render-model-decisions.md, "Partial coverage").
 constexpr double kNoCoverage = 0.5 / 255.0;
+
+const tinygltf::Value* materialExtension(const tinygltf::Material& g, const char* key) {
+    auto found = g.extensions.find(key);
+    return found == g.extensions.end() ? nullptr : &found->second;
+}
+
+glm::vec3 baseColourFactor(const tinygltf::Material& g) {
+    const auto& factor = g.pbrMetallicRoughness.baseColorFactor;
+    return factor.size() >= 3 ? glm::vec3(glm::make_vec3(factor.data())) : glm::vec3(1.0f);
+}
+
+// A textureInfo object inside an extension, which tinygltf passes on as a Value: index -1 where
+// it names none.
+tinygltf::TextureInfo textureInfo(const tinygltf::Value& t) {
+    tinygltf::TextureInfo info;
+    info.index = t.Has("index") && t.Get("index").IsNumber() ? t.Get("index").GetNumberAsInt() : -1;
+    info.texCoord = t.Has("texCoord") && t.Get("texCoord").IsNumber() ? t.Get("texCoord").GetNumberAsInt() : 0;
+    if (t.Has("extensions") && t.Get("extensions").IsObject())
+        for (const std::string& key : t.Get("extensions").Keys()) info.extensions[key] = t.Get("extensions").Get(key);
+    return info;
+}
 
 // A relative URI as a path: percent-escapes decoded (RFC 3986), '/' as separator.
 fs::path uriPath(const std::string& uri) {
@@ -109,8 +131,9 @@ std::uint32_t GltfMaterials::sceneMaterial(int index) {
     if (std::size_t(index) >= model_.materials.size())
         fail("a primitive names materials[" + std::to_string(index) + "], which does not exist");
     if (auto found = materials_.find(index); found != materials_.end()) return found->second;
+    Material made = material(model_.materials[std::size_t(index)], index);  // may add its opaque part first
     const auto sceneIndex = std::uint32_t(scene_.materials.size());
-    scene_.materials.push_back(material(model_.materials[std::size_t(index)], index));
+    scene_.materials.push_back(std::move(made));
     return materials_[index] = sceneIndex;
 }
 
@@ -126,12 +149,8 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
     // replace the base colour's.
     std::optional<std::pair<tinygltf::TextureInfo, double>> sgColour;
     const auto& pbr = g.pbrMetallicRoughness;
-    const glm::vec3 base =
-        pbr.baseColorFactor.size() >= 3 ? glm::vec3(glm::make_vec3(pbr.baseColorFactor.data())) : glm::vec3(1.0f);
-    auto extension = [&](const char* key) -> const tinygltf::Value* {
-        auto found = g.extensions.find(key);
-        return found == g.extensions.end() ? nullptr : &found->second;
-    };
+    const glm::vec3 base = baseColourFactor(g);
+    auto extension = [&](const char* key) { return materialExtension(g, key); };
     const tinygltf::Value* transmission = extension("KHR_materials_transmission");
     const tinygltf::Value* volume = extension("KHR_materials_volume");
     const tinygltf::Value* iorExtension = extension("KHR_materials_ior");
@@ -187,9 +206,65 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
         if (pbr.baseColorTexture.index >= 0)
             ignored.push_back("baseColorTexture (a glass volume is tinted by its baseColorFactor alone)");
         if (extension("KHR_materials_pbrSpecularGlossiness")) ignored.push_back("KHR_materials_pbrSpecularGlossiness");
-    } else if (const tinygltf::Value* specularGlossiness = extension("KHR_materials_pbrSpecularGlossiness")) {
-        sgColour = specularGlossinessMaterial(*specularGlossiness, index, quoted, m, ignored);
-    } else if (pbr.metallicFactor >= 0.5) {
+    } else {
+        sgColour = opaqueMaterial(g, index, quoted, m, ignored);
+        if (transmissionFactor > 0.0)
+            ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 0)");
+    }
+    if (pbr.metallicRoughnessTexture.index >= 0) ignored.push_back("metallicRoughnessTexture");
+    if (g.normalTexture.index >= 0) ignored.push_back("normalTexture");
+    if (g.occlusionTexture.index >= 0) ignored.push_back("occlusionTexture");
+    if (g.emissiveTexture.index >= 0 ||
+        (g.emissiveFactor.size() == 3 &&
+         (g.emissiveFactor[0] > 0 || g.emissiveFactor[1] > 0 || g.emissiveFactor[2] > 0)))
+        ignored.push_back("emission");
+    // The base colour's alpha: its texture's and its factor's (the specular-glossiness diffuse's
+    // where that replaces the base colour).
+    const tinygltf::TextureInfo& alphaSource = sgColour ? sgColour->first : pbr.baseColorTexture;
+    const double alphaFactor =
+        sgColour ? sgColour->second : (pbr.baseColorFactor.size() >= 4 ? pbr.baseColorFactor[3] : 1.0);
+    if (g.alphaMode == "MASK") {
+        if (m.model == MaterialModel::Glass)
+            ignored.push_back("alphaMode MASK (a glass volume's surface is closed: it bounds its medium)");
+        else
+            m.cutout = alphaTexture(alphaSource, alphaFactor, g.alphaCutoff, index, quoted, ignored);
+    } else if (g.alphaMode == "BLEND") {
+        // Partial coverage (render-model-decisions.md, "Partial coverage"): alpha of the surface
+        // is there; where none of it is (alpha 0, below half the least 8-bit step), it is cut away.
+        if (!canBePartlyCovered(m.model)) {
+            ignored.push_back("alphaMode BLEND (a glass is all there: its transmission is what passes)");
+        } else {
+            m.coverage = alphaTexture(alphaSource, alphaFactor, 1.0, index, quoted, ignored);
+            m.cutout = alphaTexture(alphaSource, alphaFactor, kNoCoverage, index, quoted, ignored);
+        }
+    } else if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty()) {
+        ignored.push_back("alphaMode " + g.alphaMode);
+    }
+    // A factor below 1/2 makes the material opaque whatever its texture says (red is at most 1).
+    if (transmission && transmission->Has("transmissionTexture") && transmissionFactor >= 0.5)
+        transmissionTexture(g, *transmission, transmissionFactor, index, quoted, m, ignored);
+    for (const auto& [key, value] : g.extensions)
+        if (!isReadGltfExtension(key)) ignored.push_back(key);
+    if (!ignored.empty()) {
+        std::string list;
+        for (const std::string& item : ignored) list += (list.empty() ? "" : ", ") + item;
+        warnAbout(quoted + ": ignored: " + list);
+    }
+    return m;
+}
+
+// What a glTF material is where it is not glass: metal a mirror, else the opaque dielectric (Lambert
+// without a specular layer), or KHR_materials_pbrSpecularGlossiness's model where it has that.
+// Sets m's model, colours and diffuse texture (m.ior already set); returns the specular-glossiness
+// diffuse texture and alpha where they replace the base colour's.
+std::optional<std::pair<tinygltf::TextureInfo, double>> GltfMaterials::opaqueMaterial(
+    const tinygltf::Material& g, int index, const std::string& quoted, Material& m, std::vector<std::string>& ignored) {
+    const auto& pbr = g.pbrMetallicRoughness;
+    const glm::vec3 base = baseColourFactor(g);
+    auto extension = [&](const char* key) { return materialExtension(g, key); };
+    if (const tinygltf::Value* specularGlossiness = extension("KHR_materials_pbrSpecularGlossiness"))
+        return specularGlossinessMaterial(*specularGlossiness, index, quoted, m, ignored);
+    if (pbr.metallicFactor >= 0.5) {
         m.model = MaterialModel::Mirror;
         m.specular = base;
         if (pbr.metallicFactor < 1.0)
@@ -225,48 +300,93 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
         m.shininess = alpha > 0.0 ? float(std::clamp(2.0 / (alpha * alpha) - 2.0, 1.0, 10000.0)) : 10000.0f;
         if (pbr.metallicFactor > 0.0)
             ignored.push_back("metallicFactor " + std::to_string(pbr.metallicFactor) + " (rendered as 0)");
-        if (transmissionFactor > 0.0)
-            ignored.push_back("transmissionFactor " + std::to_string(transmissionFactor) + " (rendered as 0)");
         if (pbr.baseColorTexture.index >= 0)
             m.diffuseTexture = baseColorTexture(pbr.baseColorTexture, base, index, quoted, ignored);
     }
-    if (pbr.metallicRoughnessTexture.index >= 0) ignored.push_back("metallicRoughnessTexture");
-    if (g.normalTexture.index >= 0) ignored.push_back("normalTexture");
-    if (g.occlusionTexture.index >= 0) ignored.push_back("occlusionTexture");
-    if (g.emissiveTexture.index >= 0 ||
-        (g.emissiveFactor.size() == 3 &&
-         (g.emissiveFactor[0] > 0 || g.emissiveFactor[1] > 0 || g.emissiveFactor[2] > 0)))
-        ignored.push_back("emission");
-    // The base colour's alpha: its texture's and its factor's (the specular-glossiness diffuse's
-    // where that replaces the base colour).
-    const tinygltf::TextureInfo& alphaSource = sgColour ? sgColour->first : pbr.baseColorTexture;
-    const double alphaFactor =
-        sgColour ? sgColour->second : (pbr.baseColorFactor.size() >= 4 ? pbr.baseColorFactor[3] : 1.0);
-    if (g.alphaMode == "MASK") {
-        if (m.model == MaterialModel::Glass)
-            ignored.push_back("alphaMode MASK (a glass volume's surface is closed: it bounds its medium)");
-        else
-            m.cutout = alphaTexture(alphaSource, alphaFactor, g.alphaCutoff, index, quoted, ignored);
-    } else if (g.alphaMode == "BLEND") {
-        // Partial coverage (render-model-decisions.md, "Partial coverage"): alpha of the surface
-        // is there; where none of it is (alpha 0, below half the least 8-bit step), it is cut away.
-        if (!canBePartlyCovered(m.model)) {
-            ignored.push_back("alphaMode BLEND (a glass is all there: its transmission is what passes)");
-        } else {
-            m.coverage = alphaTexture(alphaSource, alphaFactor, 1.0, index, quoted, ignored);
-            m.cutout = alphaTexture(alphaSource, alphaFactor, kNoCoverage, index, quoted, ignored);
+    return std::nullopt;
+}
+
+// KHR_materials_transmission's transmissionTexture: the share transmitted is its red channel (as
+// stored, not sRGB) times transmissionFactor, and each texel takes the nearer model, as the factor
+// does (render-model-decisions.md, "Transmission textures"): the glass `m` where that is 1/2 or more,
+// its opaque model elsewhere, added to the scene as m.opaquePart. The texture is read at the
+// triangles' coordinates, which are the base colour's where that is read: one named at others
+// is ignored, with a word in `ignored`.
+void GltfMaterials::transmissionTexture(const tinygltf::Material& g, const tinygltf::Value& transmission, double factor,
+                                        int index, const std::string& quoted, Material& m,
+                                        std::vector<std::string>& ignored) {
+    const tinygltf::Value& value = transmission.Get("transmissionTexture");
+    if (!value.IsObject() || !value.Has("index") || !value.Get("index").IsInt() || value.Get("index").Get<int>() < 0)
+        fail(quoted + ": KHR_materials_transmission's transmissionTexture has no texture index");
+    const tinygltf::TextureInfo info = textureInfo(value);
+    glm::dmat3 transform(1.0);
+    bool transformed = false;
+    int texCoord = info.texCoord;
+    for (const auto& [key, extension] : info.extensions) {
+        if (key != "KHR_texture_transform") {
+            ignored.push_back("transmissionTexture's " + key);
+            continue;
         }
-    } else if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty()) {
-        ignored.push_back("alphaMode " + g.alphaMode);
+        transform = textureTransform(extension, quoted);
+        transformed = true;
+        if (extension.Has("texCoord") && extension.Get("texCoord").IsNumber())
+            texCoord = extension.Get("texCoord").GetNumberAsInt();
     }
-    for (const auto& [key, value] : g.extensions)
-        if (!isReadGltfExtension(key)) ignored.push_back(key);
-    if (!ignored.empty()) {
-        std::string list;
-        for (const std::string& item : ignored) list += (list.empty() ? "" : ", ") + item;
-        warnAbout(quoted + ": ignored: " + list);
+    if (texCoord != 0)
+        ignored.push_back("transmissionTexture's TEXCOORD_" + std::to_string(texCoord) + " (TEXCOORD_0 used)");
+    const int source = imageSource(info, quoted, "transmissionTexture");
+    if (source < 0) return;  // glass everywhere, as the factor says (warned)
+    const auto key = std::make_pair(source, factor);
+    std::optional<Texture> made;  // the texture, where this material is the first to need it
+    auto found = transmissionTextures_.find(key);
+    if (found == transmissionTextures_.end()) {
+        const Image decoded = decodeSource(source, quoted, "transmissionTexture");
+        // Glass where red times the factor is 1/2 or more: over 1/2, 1 or more. The 8-bit code
+        // undoes the decoder's sRGB curve exactly (a 16-bit image keeps 8 bits, ample for 1/2).
+        made = Texture{imageName(source).string() + " (transmission)", int(decoded.width), int(decoded.height), {}};
+        made->texels.reserve(decoded.pixels.size());
+        for (const glm::vec3& texel : decoded.pixels)
+            made->texels.emplace_back(float(double(srgb8Code(texel.r)) / 255.0 * factor / 0.5));
+        if (std::all_of(made->texels.begin(), made->texels.end(), [](glm::vec3 t) { return t.x >= 1.0f; })) {
+            transmissionTextures_[key] = -1;  // glass everywhere: no texture
+            return;
+        }
+    } else if (found->second < 0) {
+        return;
     }
-    return m;
+    Material opaque;
+    opaque.name = m.name + " (where not glass)";
+    opaque.ior = m.ior;
+    std::vector<std::string> opaqueIgnored;
+    opaqueMaterial(g, index, quoted, opaque, opaqueIgnored);
+    // The triangles carry the base colour's coordinates where the glass or its opaque part reads
+    // that texture; else this texture's transform becomes theirs.
+    if (auto base = sources_.find(index); base != sources_.end() && base->second >= 0) {
+        const glm::dmat3* baseTransform = uvTransform(index);
+        if ((baseTransform ? *baseTransform : glm::dmat3(1.0)) != transform) {
+            ignored.push_back("transmissionTexture (its KHR_texture_transform is not the baseColorTexture's)");
+            return;
+        }
+    } else if (transformed) {
+        uvTransforms_[index] = transform;
+    }
+    if (made) {
+        // Its own texture on the device: it must fit what the opaque part's colour left.
+        try {
+            texelLimit_.leftAfter(scene_).check(made->path, "its transmission", std::uint64_t(made->width),
+                                                std::uint64_t(made->height));
+        } catch (const ImageTooLarge& e) {
+            fail(quoted + ": transmissionTexture " + e.what());
+        }
+        transmissionTextures_[key] = int(scene_.textures.size());
+        scene_.textures.push_back(std::move(*made));
+    }
+    for (const std::string& item : opaqueIgnored)
+        if (std::find(ignored.begin(), ignored.end(), item) == ignored.end())
+            ignored.push_back("where not glass, " + item);
+    m.transmissionTexture = transmissionTextures_[key];
+    m.opaquePart = int(scene_.materials.size());
+    scene_.materials.push_back(std::move(opaque));
 }
 
 // KHR_materials_pbrSpecularGlossiness (archived, but what assimp writes), which replaces the
@@ -308,12 +428,7 @@ std::pair<tinygltf::TextureInfo, double> GltfMaterials::specularGlossinessMateri
     }
     tinygltf::TextureInfo info;  // index -1: none
     if (sg.Has("diffuseTexture")) {
-        const tinygltf::Value& t = sg.Get("diffuseTexture");
-        info.index = t.Has("index") && t.Get("index").IsNumber() ? t.Get("index").GetNumberAsInt() : -1;
-        info.texCoord = t.Has("texCoord") && t.Get("texCoord").IsNumber() ? t.Get("texCoord").GetNumberAsInt() : 0;
-        if (t.Has("extensions") && t.Get("extensions").IsObject())
-            for (const std::string& key : t.Get("extensions").Keys())
-                info.extensions[key] = t.Get("extensions").Get(key);
+        info = textureInfo(sg.Get("diffuseTexture"));
         m.diffuseTexture = baseColorTexture(info, diffuse, index, quoted, ignored);
     }
     if (sg.Has("specularGlossinessTexture")) ignored.push_back("specularGlossinessTexture");
@@ -339,6 +454,12 @@ int GltfMaterials::baseColorSource(const tinygltf::TextureInfo& info, int materi
     }
     if (texCoord != 0)
         ignored.push_back("baseColorTexture's TEXCOORD_" + std::to_string(texCoord) + " (TEXCOORD_0 used)");
+    return sources_[material] = imageSource(info, quoted, "baseColorTexture");
+}
+
+// The image texture info.index reads, or -1 where it has none that can be read (with a warning
+// that the texture `role` falls back to its factor).
+int GltfMaterials::imageSource(const tinygltf::TextureInfo& info, const std::string& quoted, const char* role) {
     if (std::size_t(info.index) >= model_.textures.size())
         fail(quoted + " names textures[" + std::to_string(info.index) + "], which does not exist");
     // EXT_texture_webp names a WebP image in the texture's extension, beside or instead of its
@@ -351,10 +472,10 @@ int GltfMaterials::baseColorSource(const tinygltf::TextureInfo& info, int materi
         source = webp->second.Get("source").Get<int>();
     }
     if (source < 0 || std::size_t(source) >= model_.images.size()) {
-        warnAbout(quoted + ": its texture has no image it can read; using baseColorFactor");
+        warnAbout(quoted + ": its " + role + " has no image it can read; using its factor");
         source = -1;
     }
-    return sources_[material] = source;
+    return source;
 }
 
 // What messages call the file's images[source]: its file, or its place in the glTF.
@@ -367,7 +488,7 @@ fs::path GltfMaterials::imageName(int source) const {
 
 // The file's images[source], decoded within what the device leaves for textures; its alpha
 // channel moves to lastAlpha_ (alphaOf), so that a masked or blended material decodes it once.
-Image GltfMaterials::decodeSource(int source, const std::string& quoted) {
+Image GltfMaterials::decodeSource(int source, const std::string& quoted, const char* role) {
     const tinygltf::Image& image = model_.images[std::size_t(source)];
     const fs::path name = imageName(source);
     try {
@@ -385,11 +506,11 @@ Image GltfMaterials::decodeSource(int source, const std::string& quoted) {
         lastAlpha_ = {source, decoded.width, decoded.height, std::move(decoded.alpha)};
         return decoded;
     } catch (const ImageTooLarge& e) {
-        fail(quoted + ": baseColorTexture " + e.what());
+        fail(quoted + ": " + role + " " + e.what());
     } catch (const InputError& e) {
         // Refused, unlike an MTL's map_Kd: a glTF's images are part of the asset, and a glass
         // set rendered without its labels is not what its author exported (issue 50).
-        fail(quoted + ": its baseColorTexture's image cannot be read: " + e.what());
+        fail(quoted + ": its " + role + "'s image cannot be read: " + e.what());
     }
 }
 

@@ -53,14 +53,20 @@ private:
                                const std::string& quoted) const;
     std::uint32_t defaultMaterial();
     Material material(const tinygltf::Material& g, int index);
+    std::optional<std::pair<tinygltf::TextureInfo, double>> opaqueMaterial(const tinygltf::Material& g, int index,
+                                                                           const std::string& quoted, Material& m,
+                                                                           std::vector<std::string>& ignored);
+    void transmissionTexture(const tinygltf::Material& g, const tinygltf::Value& transmission, double factor, int index,
+                             const std::string& quoted, Material& m, std::vector<std::string>& ignored);
     // Returns its diffuse texture (index -1 for none) and diffuse factor's alpha.
     std::pair<tinygltf::TextureInfo, double> specularGlossinessMaterial(const tinygltf::Value& sg, int index,
                                                                         const std::string& quoted, Material& m,
                                                                         std::vector<std::string>& ignored);
     int baseColorSource(const tinygltf::TextureInfo& info, int material, const std::string& quoted,
                         std::vector<std::string>& ignored);
+    int imageSource(const tinygltf::TextureInfo& info, const std::string& quoted, const char* role);
     std::filesystem::path imageName(int source) const;
-    Image decodeSource(int source, const std::string& quoted);
+    Image decodeSource(int source, const std::string& quoted, const char* role = "baseColorTexture");
     int baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3 factor, int material, const std::string& quoted,
                          std::vector<std::string>& ignored);
     int alphaTexture(const tinygltf::TextureInfo& info, double alphaFactor, double over, int material,
@@ -77,6 +83,7 @@ private:
     std::map<int, int> sources_;              // by glTF material: its base colour's image, -1 for none
     std::map<std::tuple<int, float, float, float>, int> textures_;  // by image and factor
     std::map<std::pair<int, double>, int> alphaTextures_;           // by image and alpha factor over a divisor
+    std::map<std::pair<int, double>, int> transmissionTextures_;    // by image and transmissionFactor; -1: none
     struct {
         int source = -1;
         std::uint32_t width = 0, height = 0;

@@ -66,6 +66,15 @@ struct Material {
     // 1 - alpha (docs/render-model-decisions.md, "Partial coverage"). Only opaque models
     // (hasPartialCoverage).
     int coverage = -1;
+    // Of a glass or thin glass: where it is glass (glTF's transmissionTexture): index into
+    // Scene::textures of a grey texture, read at a hit's uv as map_Kd is, below 1 where the
+    // surface is not glass but material `opaquePart` (glTF's transmission under 1/2: each texel
+    // takes the nearer model, as the factor does); -1 for glass everywhere
+    // (docs/render-model-decisions.md, "Transmission textures"; hasTransmissionTexture).
+    int transmissionTexture = -1;
+    // The material shown where transmissionTexture is below 1: an opaque model (Lambert, Phong,
+    // mirror) with no cut-outs, coverage or transmission texture of its own; -1 for none.
+    int opaquePart = -1;
 };
 
 // Whether rays pass by parts of the material's surfaces (Material::cutout): not a glass volume's,
@@ -79,6 +88,13 @@ inline bool canBePartlyCovered(MaterialModel model) {
     return model == MaterialModel::Lambert || model == MaterialModel::Phong || model == MaterialModel::Mirror;
 }
 inline bool hasPartialCoverage(const Material& m) { return m.coverage >= 0 && canBePartlyCovered(m.model); }
+
+// Whether the material is glass only where its transmission texture says so, and opaquePart
+// elsewhere (Material::transmissionTexture).
+inline bool hasTransmissionTexture(const Material& m) {
+    return m.transmissionTexture >= 0 && m.opaquePart >= 0 &&
+           (m.model == MaterialModel::Glass || m.model == MaterialModel::ThinGlass);
+}
 
 struct Triangle {
     glm::vec3 position[3];

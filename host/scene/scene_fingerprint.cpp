@@ -85,6 +85,8 @@ std::uint64_t sceneFingerprint(const Scene& scene) {
         d.add(m.diffuseTexture);
         d.add(m.cutout);
         d.add(m.coverage);
+        d.add(m.transmissionTexture);
+        d.add(m.opaquePart);
     }
     d.add(scene.textures.size());
     for (const Texture& t : scene.textures) {

@@ -7,31 +7,12 @@ smoked acrylic (an opaque dielectric) 45% there everywhere, from its baseColorFa
 image and the buffer are embedded as data URIs. Standard library only; the output is committed and
 the build never runs this. glTF is +Y up: vitrum places (x, y, z) at (x, -z, y)."""
 
-import base64
-import json
 import math
 import os
-import struct
-import zlib
+
+from gltf_square import data_uri, png, write_square_gltf
 
 OUT = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "meshes", "blended_panels.gltf")
-
-
-def rgba_png(width, height, alpha):
-    """White RGBA, alpha(u, v) in [0, 1] at pixel centres, v down from the top row."""
-    rows = b""
-    for y in range(height):
-        row = bytearray(b"\x00")
-        for x in range(width):
-            a = max(0, min(255, round(255 * alpha((x + 0.5) / width, (y + 0.5) / height))))
-            row += bytes((255, 255, 255, a))
-        rows += bytes(row)
-
-    def chunk(kind, data):
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
-
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
-            chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
 
 
 def lace(u, v):
@@ -52,13 +33,6 @@ def lace(u, v):
 
 
 def main():
-    # A square from (-1, -1) to (1, 1) in glTF's xy plane, facing +z; uv (0, 0) at the top left.
-    positions = [-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0]
-    normals = [0, 0, 1] * 4
-    uvs = [0, 1, 1, 1, 1, 0, 0, 0]
-    indices = [0, 1, 2, 0, 2, 3]
-    data = (struct.pack("<12f", *positions) + struct.pack("<12f", *normals) + struct.pack("<8f", *uvs) +
-            struct.pack("<6H", *indices))
     turn = math.radians(-20)
     gltf = {
         "asset": {"version": "2.0", "generator": "scenes/generate/make_blended_panels.py"},
@@ -84,25 +58,9 @@ def main():
                                       "roughnessFactor": 0.05}},
         ],
         "textures": [{"source": 0}],
-        "images": [{"uri": "data:image/png;base64," + base64.b64encode(rgba_png(192, 192, lace)).decode()}],
-        "buffers": [{"byteLength": len(data),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
-        "bufferViews": [
-            {"buffer": 0, "byteOffset": 0, "byteLength": 48, "target": 34962},
-            {"buffer": 0, "byteOffset": 48, "byteLength": 48, "target": 34962},
-            {"buffer": 0, "byteOffset": 96, "byteLength": 32, "target": 34962},
-            {"buffer": 0, "byteOffset": 128, "byteLength": 12, "target": 34963},
-        ],
-        "accessors": [
-            {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, 0], "max": [1, 1, 0]},
-            {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
-            {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"},
-            {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"},
-        ],
+        "images": [{"uri": data_uri("image/png", png(192, 192, 4, lambda u, v: (1.0, 1.0, 1.0, lace(u, v))))}],
     }
-    with open(OUT, "w") as f:
-        json.dump(gltf, f, indent=1)
-        f.write("\n")
+    write_square_gltf(OUT, gltf)
 
 
 if __name__ == "__main__":

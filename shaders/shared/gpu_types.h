@@ -127,14 +127,17 @@ VITRUM_CONST uint kNoTexture = 0xFFFFFFFFu;
 //   diffuse.w  (uint bits) = index into the texture table or kNoTexture
 //   specular.w = Phong exponent Ns
 //   attenuation.xyz = Beer-Lambert mu per channel (Tf), attenuation.w = IOR (Ni)
-//   coverage.x (uint bits) = the texture of the share of the surface that is there
-//                            (Material::coverage, hasPartialCoverage) or kNoTexture; yzw unused
+//   parts.x (uint bits) = the texture of the share of the surface that is there
+//                         (Material::coverage, hasPartialCoverage) or kNoTexture
+//   parts.y (uint bits) = the texture of where a glass is glass (Material::transmissionTexture,
+//                         hasTransmissionTexture) or kNoTexture; parts.z (uint bits) = the
+//                         material it is elsewhere (Material::opaquePart); w unused
 struct GpuMaterial {
     vec4 ambient;
     vec4 diffuse;
     vec4 specular;
     vec4 attenuation;
-    vec4 coverage;
+    vec4 parts;
 };
 
 // A texture is a run of texels in the texture texel buffer, one 16-byte texel a texture texel

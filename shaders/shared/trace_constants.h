@@ -31,7 +31,8 @@ VITRUM_CONST uint kConstantInstancing = 18u;
 VITRUM_CONST uint kConstantGlassTints = 19u;
 VITRUM_CONST uint kConstantCutouts = 20u;
 VITRUM_CONST uint kConstantPartialCoverage = 21u;
-VITRUM_CONST uint kTraceConstantCount = 22u;
+VITRUM_CONST uint kConstantTransmissionTextures = 22u;
+VITRUM_CONST uint kTraceConstantCount = 23u;
 VITRUM_GPU_END
 
 #endif

@@ -1046,6 +1046,89 @@ TEST_F(GltfLoader, ABlendedMaterialIsPartlyThereByItsAlpha) {
     EXPECT_TRUE(features.partialCoverage && features.cutouts && features.textures);
 }
 
+// KHR_materials_transmission's transmissionTexture (render-model-decisions.md, "Transmission
+// textures"): red times transmissionFactor is the share transmitted, and each texel takes the
+// nearer model, as the factor does: the glass where it is 1/2 or more, elsewhere the material as it
+// would be without transmission (its opaque part). Red is read as stored, not as sRGB.
+TEST_F(GltfLoader, ATransmissionTextureMakesAGlassOpaqueWhereItsRedTimesTheFactorIsBelowAHalf) {
+    GltfBuilder b;
+    b.doc()["images"] =
+        json::array({{{"uri", "data:image/png;base64," +
+                                  base64(pngWithAlpha(4, 1, 3, {0, 9, 9, 127, 9, 9, 128, 9, 9, 255, 9, 9}))}},
+                     {{"uri", "data:image/png;base64," + base64(pngWithAlpha(1, 1, 3, {255, 255, 255}))}}});
+    b.doc()["textures"] = json::array({{{"source", 0}}, {{"source", 1}}});
+    const int uvs = b.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, 5126, "VEC2", 3);
+    const int positions = b.positions(kTriangle);
+    auto transmissive = [](std::string name, double factor, int texture, json pbr, bool volume) {
+        json extensions = {{"KHR_materials_transmission", {{"transmissionFactor", factor}}}};
+        if (texture >= 0) extensions["KHR_materials_transmission"]["transmissionTexture"] = {{"index", texture}};
+        if (volume) extensions["KHR_materials_volume"] = {{"thicknessFactor", 0.1}};
+        return json{{"name", std::move(name)}, {"pbrMetallicRoughness", std::move(pbr)}, {"extensions", extensions}};
+    };
+    const json plastic = {{"baseColorFactor", {0.2, 0.4, 0.6, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.5}};
+    json moved = transmissive("moved", 1.0, 0, {{"baseColorTexture", {{"index", 1}}}}, false);
+    moved["extensions"]["KHR_materials_transmission"]["transmissionTexture"]["extensions"] = {
+        {"KHR_texture_transform", {{"offset", {0.5, 0.0}}}}};
+    for (const json& material :
+         {transmissive("pane", 1.0, 0, plastic, false), transmissive("half", 0.5, 0, plastic, false),
+          transmissive("block", 1.0, 0, {{"baseColorFactor", {0.9, 0.8, 0.7, 1.0}}}, true),
+          transmissive("clear", 1.0, 1, plastic, false), transmissive("dim", 0.3, 0, plastic, false), moved})
+        b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", positions}, {"TEXCOORD_0", uvs}}},
+                                 {"material", b.material(material)}})}});
+    ::testing::internal::CaptureStderr();
+    const Scene scene = load(b.write(dir_ / "transmission.gltf"));
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    auto named = [&](const std::string& name) -> const Material& {
+        for (const Material& m : scene.materials)
+            if (m.name == name) return m;
+        ADD_FAILURE() << "no material " << name;
+        return scene.materials.front();
+    };
+    auto values = [&](const Material& m) {
+        std::vector<float> v;
+        if (m.transmissionTexture >= 0)
+            for (const glm::vec3& texel : scene.textures[std::size_t(m.transmissionTexture)].texels)
+                v.push_back(texel.x);
+        return v;
+    };
+    ASSERT_EQ(scene.materials.size(), 9u) << "six materials and three opaque parts";
+    // Red over 1/2: 127 of 255 is just below it, 128 just above.
+    const Material& pane = named("pane");
+    EXPECT_EQ(pane.model, MaterialModel::ThinGlass);
+    EXPECT_EQ(values(pane), (std::vector<float>{0.0f, float(254 / 255.0), float(256 / 255.0), 2.0f}));
+    ASSERT_TRUE(hasTransmissionTexture(pane));
+    const Material& paneOpaque = scene.materials[std::size_t(pane.opaquePart)];
+    EXPECT_EQ(paneOpaque.name, "pane (where not glass)");
+    // The opaque dielectric the material is without transmission: Ks = F0(1.5) = 0.04, Ns = 2 /
+    // roughness^4 - 2 = 30.
+    EXPECT_EQ(paneOpaque.model, MaterialModel::Phong);
+    EXPECT_EQ(paneOpaque.diffuse, glm::vec3(0.2f, 0.4f, 0.6f));
+    EXPECT_NEAR(paneOpaque.specular.x, 0.04f, 1e-7f);
+    EXPECT_NEAR(paneOpaque.shininess, 30.0f, 1e-4f);
+    EXPECT_FALSE(hasTransmissionTexture(paneOpaque) || hasCutouts(paneOpaque) || hasPartialCoverage(paneOpaque));
+    // A factor of 1/2: red itself over 1/2, so 255 is exactly 1, glass.
+    EXPECT_EQ(values(named("half")), (std::vector<float>{0.0f, float(127 / 255.0), float(128 / 255.0), 1.0f}));
+    const Material& block = named("block");
+    EXPECT_EQ(block.model, MaterialModel::Glass);
+    ASSERT_TRUE(hasTransmissionTexture(block));
+    EXPECT_EQ(scene.materials[std::size_t(block.opaquePart)].model, MaterialModel::Mirror) << "metallicFactor 1";
+    EXPECT_EQ(scene.materials[std::size_t(block.opaquePart)].specular, glm::vec3(0.9f, 0.8f, 0.7f));
+    EXPECT_EQ(named("clear").transmissionTexture, -1) << "1/2 or more everywhere is glass everywhere";
+    EXPECT_EQ(named("clear").opaquePart, -1);
+    EXPECT_EQ(named("dim").model, MaterialModel::Phong) << "below 1/2 everywhere, whatever the texture";
+    EXPECT_EQ(named("dim").transmissionTexture, -1);
+    EXPECT_EQ(named("moved").transmissionTexture, -1);
+    EXPECT_NE(warnings.find("(\"moved\"): ignored: transmissionTexture (its KHR_texture_transform is not the "
+                            "baseColorTexture's)"),
+              std::string::npos)
+        << warnings;
+    EXPECT_EQ(warnings.find("transmissionTexture"), warnings.rfind("transmissionTexture (")) << warnings;
+    const SceneFeatures features = analyseScene(scene);
+    EXPECT_TRUE(features.transmissionTextures && features.textures);
+    EXPECT_TRUE(features.uses(MaterialModel::Phong) && features.uses(MaterialModel::Mirror))
+        << "the opaque parts' models, which no triangle names";
+}
+
 // A blended material's alpha is a texture of its own on the device, beside its colour: with the
 // colour's texels held, it must fit what the texel limit leaves, or the file is refused naming
 // the limit, as an image too large is.

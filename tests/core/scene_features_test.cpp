@@ -4,11 +4,12 @@
 
 #include <set>
 
+#include "../support/scenes_in_code.h"
 #include "analysis/scene_features.h"
+#include "glass_scenes.h"
 #include "gpu_input/trace_specialization.h"
 #include "scene/scene_loader.h"
 #include "shared/gpu_types.h"
-#include "glass_scenes.h"
 
 namespace vitrum {
 namespace {
@@ -135,6 +136,34 @@ TEST(SceneFeatures, PartlyCoveredSurfacesNeedPendingRaysAndTheirUvs) {
     EXPECT_FALSE(TraceSpecialization::forScene(scene, before).partialCoverage);
     for (Material& m : scene.materials) m.model = MaterialModel::ThinGlass;
     EXPECT_FALSE(analyseScene(scene).partialCoverage) << "a thin glass's coverage";
+}
+
+// A glass that is glass only where its transmission texture says (Material::transmissionTexture)
+// calls for the switch and the uvs to read it, and for its opaque part's model and what that needs
+// (a lit Phong surface: shadow rays), though no triangle names the opaque part; a material no hit
+// can show needs nothing.
+TEST(SceneFeatures, AGlassWithATransmissionTextureNeedsItsOpaquePartsModel) {
+    Scene scene = loadProjectScene("scenes/lambert_spheres.json");
+    ASSERT_FALSE(scene.lights.empty());
+    for (Material& m : scene.materials) m = testing::makeMaterial(MaterialModel::ThinGlass, {}, glm::vec3(0.9f));
+    scene.materials.push_back(
+        testing::makeMaterial(MaterialModel::Phong, glm::vec3(0.1f), glm::vec3(0.5f), glm::vec3(0.3f), 20.0f));
+    scene.textures.push_back(Texture{"transmission", 2, 1, {glm::vec3(0.0f), glm::vec3(2.0f)}});
+    const SceneFeatures before = analyseScene(scene);
+    ASSERT_FALSE(before.transmissionTextures || before.textures || before.shadowRays);
+    ASSERT_FALSE(before.uses(MaterialModel::Phong)) << "a material no triangle names";
+    for (std::size_t i = 0; i + 1 < scene.materials.size(); ++i) {
+        scene.materials[i].transmissionTexture = 0;
+        scene.materials[i].opaquePart = int(scene.materials.size()) - 1;
+    }
+    const SceneFeatures f = analyseScene(scene);
+    EXPECT_TRUE(f.transmissionTextures && f.textures && f.shadowRays);
+    EXPECT_TRUE(f.uses(MaterialModel::Phong) && f.uses(MaterialModel::ThinGlass));
+    EXPECT_TRUE(TraceSpecialization::forScene(scene, f).transmissionTextures);
+    EXPECT_FALSE(TraceSpecialization::forScene(scene, before).transmissionTextures);
+    EXPECT_TRUE(TraceSpecialization::general().transmissionTextures);
+    for (std::size_t i = 0; i + 1 < scene.materials.size(); ++i) scene.materials[i].model = MaterialModel::Lambert;
+    EXPECT_FALSE(analyseScene(scene).transmissionTextures) << "an opaque material's transmission texture";
 }
 
 TEST(SceneFeatures, GlassRestingOnAnOpaqueSurfaceNeedsTheContactCheck) {

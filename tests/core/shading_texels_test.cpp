@@ -6,6 +6,7 @@
 #include <array>
 #include <bit>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "bvh/bvh.h"
@@ -98,12 +99,20 @@ TEST(ShadingTexels, EveryTriangleGetsItsNormalsAndUvsBackBitForBit) {
 // The traversal reads a cut-out triangle's uvs (shaders/cutout.glsl), shading a partly covered
 // one's (coverSurface in shading.glsl): a material with either and no map_Kd stores them as a
 // textured one's, bit for bit; a glass volume's (which nothing reads) stores none.
-TEST(ShadingTexels, ACutOutOrPartlyCoveredTriangleGetsItsUvs) {
-    for (bool cutOut : {true, false}) {
-        SCOPED_TRACE(cutOut ? "cut out" : "partly covered");
+TEST(ShadingTexels, ACutOutPartlyCoveredOrTransmissionTexturedTriangleGetsItsUvs) {
+    for (const std::string kind : {"cut out", "partly covered", "transmission textured"}) {
+        SCOPED_TRACE(kind);
         Scene scene = mixedShading();
         for (Material& m : scene.materials) m.diffuseTexture = -1;
-        (cutOut ? scene.materials[0].cutout : scene.materials[0].coverage) = 0;
+        if (kind == "cut out") scene.materials[0].cutout = 0;
+        if (kind == "partly covered") scene.materials[0].coverage = 0;
+        if (kind == "transmission textured") {
+            // A thin glass whose opaque part no triangle names: the glass's triangles carry the uvs.
+            scene.materials.push_back(scene.materials[0]);
+            scene.materials[0].model = MaterialModel::ThinGlass;
+            scene.materials[0].transmissionTexture = 0;
+            scene.materials[0].opaquePart = int(scene.materials.size()) - 1;
+        }
         const Bvh bvh = buildSceneBvh(scene);
         const ShadingPlan plan = planShading(scene, bvh);
         std::size_t cut = 0;
@@ -117,7 +126,7 @@ TEST(ShadingTexels, ACutOutOrPartlyCoveredTriangleGetsItsUvs) {
             const Decoded decoded = decode(texels, i);
             for (int k = 0; k < 3; ++k) EXPECT_EQ(decoded.uv[k], t.uv[k]) << "corner " << k;
         }
-        scene.materials[0].model = MaterialModel::Glass;
+        scene.materials[0].model = kind == "transmission textured" ? MaterialModel::Phong : MaterialModel::Glass;
         EXPECT_EQ(planShading(scene, bvh).texturedTriangles, 0u);
     }
 }

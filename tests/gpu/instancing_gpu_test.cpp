@@ -132,6 +132,26 @@ TEST(Instancing, PartlyCoveredCopiesRenderAsTheirFlattenedScene) {
     EXPECT_GT(diffImages(instanced.gpu, renderBoth(scene).gpu).shareOver005, 0.01) << "what lies beyond shows";
 }
 
+// Copies of a mesh of glass in parts (Material::transmissionTexture): each copy's hit reads the
+// texture at the mesh's uvs and shows the glass or its opaque part, as the flattened copies' do.
+TEST(Instancing, CopiesOfGlassInPartsRenderAsTheirFlattenedScene) {
+    Scene scene = instancedScene();
+    const std::size_t glass = texturedTetrahedra(scene, &Material::transmissionTexture, 0.2f, 1.5f);
+    Material opaque = scene.materials[glass];
+    opaque.transmissionTexture = -1;
+    scene.materials[glass].model = MaterialModel::Glass;
+    scene.materials[glass].opaquePart = int(scene.materials.size());
+    scene.materials.push_back(opaque);
+    const RenderPair instanced = renderBoth(scene);
+    const RenderPair flat = renderBoth(flattened(scene));
+    expectImagesMatch(instanced);
+    expectSameImage(instanced.gpu, flat.gpu);
+    expectSameImage(instanced.cpu, flat.cpu);
+    EXPECT_TRUE(instanced.gpuStats.kernel && instanced.gpuStats.kernel->transmissionTextures);
+    scene.materials[glass].transmissionTexture = -1;
+    EXPECT_GT(diffImages(instanced.gpu, renderBoth(scene).gpu).shareOver005, 0.01) << "the opaque parts show";
+}
+
 // A mirroring instance's triangles face out as its flattened copy's do (the loaders reverse the
 // winding of a mirrored mesh): seen from inside, the mirrored tetrahedron's medium is entered and
 // left as often as the plain one's.

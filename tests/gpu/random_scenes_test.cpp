@@ -166,6 +166,9 @@ public:
         if (chance(0.25)) addCutout(scene);
         // Opaque surfaces partly there (glTF's alphaMode BLEND), drawn after everything else.
         if (chance(0.25)) addCoverage(scene);
+        // A glass that is glass only where a texture says, an opaque material elsewhere (glTF's
+        // transmissionTexture), drawn last.
+        if (chance(0.25)) addTransmissionTexture(scene);
         return transformed(scene, scale, shift);
     }
 
@@ -298,6 +301,33 @@ private:
         scene.textures.push_back(std::move(texture));
         uvsFromPositions(scene);
         drawn_ += ", material " + std::to_string(material) + " partly there";
+    }
+
+    // A random grey texture of 2 to 5 texels a side, from 0 to 2, where one glass or thin glass
+    // material (if there is one) is glass where it is 1 or more, and a new Lambert, Phong or
+    // mirror material elsewhere.
+    void addTransmissionTexture(Scene& scene) {
+        std::vector<std::size_t> candidates;
+        for (std::size_t i = 0; i < scene.materials.size(); ++i)
+            if (scene.materials[i].model == MaterialModel::Glass ||
+                scene.materials[i].model == MaterialModel::ThinGlass)
+                candidates.push_back(i);
+        if (candidates.empty()) return;
+        const std::size_t material =
+            candidates[std::uniform_int_distribution<std::size_t>(0, candidates.size() - 1)(rng_)];
+        const MaterialModel model = pick({MaterialModel::Lambert, MaterialModel::Phong, MaterialModel::Mirror});
+        const int side = int(uniform(2.0f, 5.99f));
+        Texture texture{"transmission", side, side, {}};
+        for (int i = 0; i < side * side; ++i) texture.texels.push_back(vec3(uniform(0.0f, 2.0f)));
+        scene.materials[material].transmissionTexture = int(scene.textures.size());
+        scene.materials[material].opaquePart = int(scene.materials.size());
+        scene.textures.push_back(std::move(texture));
+        scene.materials.push_back(makeMaterial(model, vec3(uniform(0, 0.2f)),
+                                               vec3(uniform(0, 1), uniform(0, 1), uniform(0, 1)), vec3(uniform(0, 1)),
+                                               pick({1.0f, 20.0f, 1000.0f}), uniform(1.0f, 2.5f)));
+        uvsFromPositions(scene);
+        drawn_ +=
+            ", material " + std::to_string(material) + " glass only where a texture says, else " + modelName(model);
     }
 
     // Every position, normal and direction of the scene turned by `angle` about `axis`.
