@@ -227,15 +227,15 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
         if (m.model == MaterialModel::Glass)
             ignored.push_back("alphaMode MASK (a glass volume's surface is closed: it bounds its medium)");
         else
-            m.cutout = alphaTexture(alphaSource, alphaFactor, g.alphaCutoff, index, quoted, ignored);
+            m.cutout = alphaTexture(alphaSource, alphaFactor, g.alphaCutoff, "alpha", index, quoted, ignored);
     } else if (g.alphaMode == "BLEND") {
         // Partial coverage (render-model-decisions.md, "Partial coverage"): alpha of the surface
         // is there; where none of it is (alpha 0, below half the least 8-bit step), it is cut away.
         if (!canBePartlyCovered(m.model)) {
             ignored.push_back("alphaMode BLEND (a glass is all there: its transmission is what passes)");
         } else {
-            m.coverage = alphaTexture(alphaSource, alphaFactor, 1.0, index, quoted, ignored);
-            m.cutout = alphaTexture(alphaSource, alphaFactor, kNoCoverage, index, quoted, ignored);
+            m.coverage = alphaTexture(alphaSource, alphaFactor, 1.0, "alpha", index, quoted, ignored);
+            m.cutout = alphaTexture(alphaSource, alphaFactor, kNoCoverage, "where alpha is 0", index, quoted, ignored);
         }
     } else if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty()) {
         ignored.push_back("alphaMode " + g.alphaMode);
@@ -534,9 +534,9 @@ int GltfMaterials::baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3
 // `over`, as a grey texture read at the base colour's coordinates: per texel of the image, or
 // one texel where the image has no alpha channel; none where it is 1 or more everywhere. MASK's
 // Material::cutout is alpha over alphaCutoff (cut below 1), BLEND's Material::coverage alpha
-// itself and its cutout alpha over kNoCoverage.
-int GltfMaterials::alphaTexture(const tinygltf::TextureInfo& info, double alphaFactor, double over, int material,
-                                const std::string& quoted, std::vector<std::string>& ignored) {
+// itself and its cutout alpha over kNoCoverage. `what` names it after its image's name ("alpha").
+int GltfMaterials::alphaTexture(const tinygltf::TextureInfo& info, double alphaFactor, double over, const char* what,
+                                int material, const std::string& quoted, std::vector<std::string>& ignored) {
     if (!(over > 0.0)) return -1;  // alpha is never below 0
     const double scale = std::clamp(alphaFactor, 0.0, 1.0) / over;
     const int source = baseColorSource(info, material, quoted, ignored);
@@ -546,7 +546,7 @@ int GltfMaterials::alphaTexture(const tinygltf::TextureInfo& info, double alphaF
     // Named for `vitrum info`: the image's alpha, or the factor's alone.
     Texture texture{file_.string() + ": " + quoted + "'s baseColorFactor alpha", 1, 1, {glm::vec3(float(scale))}};
     if (alpha && !alpha->empty()) {
-        texture.path = imageName(source).string() + (over == kNoCoverage ? " (where alpha is 0)" : " (alpha)");
+        texture.path = imageName(source).string() + " (" + what + ")";
         texture.width = int(lastAlpha_.width);
         texture.height = int(lastAlpha_.height);
         texture.texels.resize(alpha->size());

@@ -69,7 +69,7 @@ private:
     Image decodeSource(int source, const std::string& quoted, const char* role = "baseColorTexture");
     int baseColorTexture(const tinygltf::TextureInfo& info, glm::vec3 factor, int material, const std::string& quoted,
                          std::vector<std::string>& ignored);
-    int alphaTexture(const tinygltf::TextureInfo& info, double alphaFactor, double over, int material,
+    int alphaTexture(const tinygltf::TextureInfo& info, double alphaFactor, double over, const char* what, int material,
                      const std::string& quoted, std::vector<std::string>& ignored);
     const std::vector<float>& alphaOf(int source, const std::string& quoted);
     glm::dmat3 textureTransform(const tinygltf::Value& transform, const std::string& quoted);

@@ -92,6 +92,14 @@ inline std::size_t differingPixels(const Image& a, const Image& b) {
     return differing;
 }
 
+// The pixels of two images of one size with a channel more than `tolerance` apart (or not a number).
+inline std::size_t pixelsApart(const Image& a, const Image& b, float tolerance) {
+    std::size_t apart = 0;
+    for (std::size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i)
+        if (!glm::all(glm::lessThanEqual(glm::abs(a.pixels[i] - b.pixels[i]), glm::vec3(tolerance)))) ++apart;
+    return apart;
+}
+
 // Two renders of the same rays (the specialized kernel and the general one, say) counted the same
 // work and met the same limits.
 inline void expectSameWork(const RenderStats& a, const RenderStats& b) {
