@@ -273,7 +273,8 @@ vec3 directLight(GpuMaterial m, GpuLight light) {
 }
 
 // Lambert and Phong: ambient from every light, then one shadow ray per light whose direct term
-// is not zero; the shadow ray carries that term (st.shadowLight) to finishShadow.
+// reaches kLeastShadowedTerm in some channel; the shadow ray carries that term (st.shadowLight) to
+// finishShadow.
 void nextLight(GpuMaterial m) {
     uint index = st.light;
     if (!kShadowRays || index >= lightCount()) {
@@ -283,7 +284,7 @@ void nextLight(GpuMaterial m) {
     GpuLight light = loadLight(index);
     gRoundColour += st.ray.weight.xyz * light.colour.xyz * m.ambient.xyz;
     vec3 direct = directLight(m, light);
-    if (all(equal(direct, vec3(0.0)))) {
+    if (all(lessThan(direct, vec3(kLeastShadowedTerm)))) {
         st.light = index + 1u;
         return;
     }

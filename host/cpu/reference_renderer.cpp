@@ -376,7 +376,8 @@ private:
                 direct += Color(m.specular) * highlight;
             }
             direct *= colour;
-            if (direct == Color(0)) continue;  // nothing to shadow
+            // Nothing to shadow, or only a denormal a device may flush (gpu_types.h, kLeastShadowedTerm).
+            if (glm::all(glm::lessThan(direct, Color(gpu::kLeastShadowedTerm)))) continue;
             if (visible(hit, Vec3(light.position), counters)) sum += direct;
         }
         return sum;

@@ -155,6 +155,13 @@ struct GpuLight {
     vec4 colour;
 };
 
+// ---- Shadow rays ----------------------------------------------------------------------------
+// A light's shadow ray is traced only where its unshadowed direct term reaches the smallest normal
+// float in some channel: a term below it is a denormal, which a device may flush to 0 (Vulkan
+// leaves that to the implementation; lavapipe flushes some), so that the rays traced, and their
+// count, would depend on the device (render-model-decisions.md, "Skipped").
+VITRUM_CONST float kLeastShadowedTerm = 1.17549435e-38;  // FLT_MIN
+
 // ---- Fresnel models -------------------------------------------------------------------------
 VITRUM_CONST uint kFresnelSchlick = 0u;
 VITRUM_CONST uint kFresnelExact = 1u;

@@ -320,6 +320,23 @@ TEST(ReferenceRenderer, LightBehindTheSurfaceGivesAmbientOnly) {
     EXPECT_EQ(stats.shadowRays, 0u);  // direct term zero: no shadow ray needed
 }
 
+// A direct term below the smallest normal float is a denormal, which a device may flush to 0: no
+// shadow ray is traced for it, so that every device traces the same rays (render-model-decisions.md,
+// "Skipped"). Kd 0.5 head-on under a light of 2e-38 gives 1e-38, below FLT_MIN (1.18e-38); under
+// 4e-38 it gives 2e-38, above it: a shadow ray for each of the 81 pixels.
+TEST(ReferenceRenderer, ADenormalDirectTermSendsNoShadowRay) {
+    for (bool doublePrecision : {false, true}) {
+        SCOPED_TRACE(doublePrecision ? "double" : "float");
+        for (const auto& [light, rays] : {std::pair{2e-38f, 0u}, std::pair{4e-38f, 81u}}) {
+            Scene scene = wallOf(makeMaterial(MaterialModel::Lambert, {0.0f, 0.0f, 0.0f}, {0.5f, 0.5f, 0.5f}));
+            scene.lights.push_back({{0, -5, 0}, glm::vec3(light), false});
+            RenderStats stats;
+            render(scene, doublePrecision, &stats);
+            EXPECT_EQ(stats.shadowRays, rays) << light;
+        }
+    }
+}
+
 TEST(ReferenceRenderer, DiffuseTextureIsSampledBilinearly) {
     Material m = makeMaterial(MaterialModel::Lambert, {0, 0, 0}, {1, 1, 1});
     m.diffuseTexture = 0;

@@ -104,6 +104,21 @@ TEST(ShadingDecisions, PhongHighlightIsNotGatedOnNDotLAndZeroToTheZeroIsOne) {
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(image->at(4, 4)[c], 0.55, 1e-6);
 }
 
+// A shadow ray is traced only for a direct term of at least the smallest normal float in some
+// channel: below it a device may flush the term to 0 (lavapipe flushes some), so only that threshold makes
+// every device and the CPU trace the same rays. Kd 0.5 under a light of 2e-38 gives at most 1e-38
+// (below FLT_MIN, 1.18e-38): no ray; under 4e-38 at least 0.5 n.l 4e-38 > 1.8e-38 (n.l > 0.92 in
+// every pixel): 81 rays, on both backends.
+TEST(ShadingDecisions, AShadowRayIsTracedOnlyForADirectTermOfAtLeastTheSmallestNormalFloat) {
+    for (const auto& [light, rays] : {std::pair{2e-38f, 0u}, std::pair{4e-38f, 81u}}) {
+        Scene scene = wallOf(makeMaterial(MaterialModel::Lambert, {0.0f, 0.0f, 0.0f}, {0.5f, 0.5f, 0.5f}));
+        scene.lights.push_back({{0, -5, 0}, glm::vec3(light), false});
+        const RenderPair r = renderBoth(scene);
+        EXPECT_EQ(r.gpuStats.shadowRays, rays) << light;
+        EXPECT_EQ(r.cpuStats.shadowRays, rays) << light;
+    }
+}
+
 // A ray that leaves the scene inside an absorbing medium (only an open mesh allows it) brings
 // back nothing in the channels the medium absorbs, and is counted. A glass sheet (Ni 1.5, Tf 1 0
 // 0) seen head-on against a white background, max_depth 2: its refraction (1 - R0 = 0.96)
