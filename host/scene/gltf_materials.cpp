@@ -224,15 +224,19 @@ Material GltfMaterials::material(const tinygltf::Material& g, int index) {
     const double alphaFactor =
         sgColour ? sgColour->second : (pbr.baseColorFactor.size() >= 4 ? pbr.baseColorFactor[3] : 1.0);
     if (g.alphaMode == "MASK") {
-        if (m.model == MaterialModel::Glass)
-            ignored.push_back("alphaMode MASK (a glass volume's surface is closed: it bounds its medium)");
-        else
+        if (m.model == MaterialModel::Glass) {
+            // Said only where it would cut something (exporters write MASK and BLEND on glass
+            // whose alpha is 1).
+            if (alphaBelow(alphaSource, alphaFactor, g.alphaCutoff, quoted))
+                ignored.push_back("alphaMode MASK (a glass volume's surface is closed: it bounds its medium)");
+        } else
             m.cutout = alphaTexture(alphaSource, alphaFactor, g.alphaCutoff, "alpha", index, quoted, ignored);
     } else if (g.alphaMode == "BLEND") {
         // Partial coverage (render-model-decisions.md, "Partial coverage"): alpha of the surface
         // is there; where none of it is (alpha 0, below half the least 8-bit step), it is cut away.
         if (!canBePartlyCovered(m.model)) {
-            ignored.push_back("alphaMode BLEND (a glass is all there: its transmission is what passes)");
+            if (alphaBelow(alphaSource, alphaFactor, 1.0, quoted))
+                ignored.push_back("alphaMode BLEND (a glass is all there: its transmission is what passes)");
         } else {
             m.coverage = alphaTexture(alphaSource, alphaFactor, 1.0, "alpha", index, quoted, ignored);
             m.cutout = alphaTexture(alphaSource, alphaFactor, kNoCoverage, "where alpha is 0", index, quoted, ignored);
@@ -566,6 +570,17 @@ int GltfMaterials::alphaTexture(const tinygltf::TextureInfo& info, double alphaF
     const int index = int(scene_.textures.size());
     scene_.textures.push_back(std::move(texture));
     return alphaTextures_[key] = index;
+}
+
+// Whether the base colour's alpha (the texture's times the factor's) is below `level` anywhere.
+bool GltfMaterials::alphaBelow(const tinygltf::TextureInfo& info, double alphaFactor, double level,
+                               const std::string& quoted) {
+    const double factor = std::clamp(alphaFactor, 0.0, 1.0);
+    if (factor < level) return true;
+    const int source = info.index >= 0 ? imageSource(info, quoted, "baseColorTexture") : -1;
+    if (source < 0) return false;
+    const std::vector<float>& alpha = alphaOf(source, quoted);
+    return std::any_of(alpha.begin(), alpha.end(), [&](float a) { return double(a) * factor < level; });
 }
 
 // The alpha channel of image `source` (empty where it has none), decoding the image unless it

@@ -71,6 +71,7 @@ private:
                          std::vector<std::string>& ignored);
     int alphaTexture(const tinygltf::TextureInfo& info, double alphaFactor, double over, const char* what, int material,
                      const std::string& quoted, std::vector<std::string>& ignored);
+    bool alphaBelow(const tinygltf::TextureInfo& info, double alphaFactor, double level, const std::string& quoted);
     const std::vector<float>& alphaOf(int source, const std::string& quoted);
     glm::dmat3 textureTransform(const tinygltf::Value& transform, const std::string& quoted);
 

@@ -923,19 +923,22 @@ TEST_F(GltfLoader, AMaskedMaterialIsCutOutWhereItsAlphaIsBelowTheCutoff) {
                             {"KHR_materials_volume", {{"thicknessFactor", 0.1}}}};
     json thin = masked("thin", 0, 1.0);
     thin["extensions"] = {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}};
+    // A volume whose alpha is 1 everywhere: its MASK would cut nothing, and goes unmentioned.
+    json wholeVolume = masked("whole volume", 1, 1.0, 0.15);
+    wholeVolume["extensions"] = volume["extensions"];
     // KHR_materials_pbrSpecularGlossiness's diffuse replaces the base colour, its alpha too.
     json glossy = masked("glossy", 0, 1.0);
     glossy["extensions"] = {{"KHR_materials_pbrSpecularGlossiness", {{"diffuseFactor", {1.0, 1.0, 1.0, 0.3}}}}};
-    for (const json& material :
-         {masked("rgba", 0, 1.0), masked("scaled", 0, 0.8, 0.25), masked("grey", 1, 1.0),
-          masked("opaque", 0, 1.0, 0.5, "OPAQUE"), masked("factor only", -1, 0.3), masked("factor enough", -1, 0.5),
-          masked("no alpha channel", 2, 0.4, 0.8), masked("cutoff 0", 0, 1.0, 0.0), mirror, volume, thin, glossy})
+    for (const json& material : {masked("rgba", 0, 1.0), masked("scaled", 0, 0.8, 0.25), masked("grey", 1, 1.0),
+                                 masked("opaque", 0, 1.0, 0.5, "OPAQUE"), masked("factor only", -1, 0.3),
+                                 masked("factor enough", -1, 0.5), masked("no alpha channel", 2, 0.4, 0.8),
+                                 masked("cutoff 0", 0, 1.0, 0.0), mirror, volume, thin, glossy, wholeVolume})
         b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", positions}, {"TEXCOORD_0", uvs}}},
                                  {"material", b.material(material)}})}});
     ::testing::internal::CaptureStderr();
     const Scene scene = load(b.write(dir_ / "masked.gltf"));
     const std::string warnings = ::testing::internal::GetCapturedStderr();
-    ASSERT_EQ(scene.materials.size(), 12u);
+    ASSERT_EQ(scene.materials.size(), 13u);
     auto cutout = [&](std::size_t material) -> std::vector<float> {
         const Material& m = scene.materials[material];
         if (m.cutout < 0) return {};
@@ -1006,14 +1009,19 @@ TEST_F(GltfLoader, ABlendedMaterialIsPartlyThereByItsAlpha) {
     mirror["pbrMetallicRoughness"]["metallicFactor"] = 1.0;
     json thin = blended("thin", 0, 1.0);
     thin["extensions"] = {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}};
-    for (const json& material : {blended("rgba", 0, 1.0), blended("factor", -1, 0.25), blended("factor 0", -1, 0.0),
-                                 blended("opaque alpha", 1, 1.0), blended("no alpha channel", 2, 0.6), mirror, thin})
+    // A glass whose alpha is 1 everywhere (what exporters write for glass): its BLEND changes
+    // nothing, and goes unmentioned.
+    json clear = blended("clear", 1, 1.0);
+    clear["extensions"] = thin["extensions"];
+    for (const json& material :
+         {blended("rgba", 0, 1.0), blended("factor", -1, 0.25), blended("factor 0", -1, 0.0),
+          blended("opaque alpha", 1, 1.0), blended("no alpha channel", 2, 0.6), mirror, thin, clear})
         b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", positions}, {"TEXCOORD_0", uvs}}},
                                  {"material", b.material(material)}})}});
     ::testing::internal::CaptureStderr();
     const Scene scene = load(b.write(dir_ / "blended.gltf"));
     const std::string warnings = ::testing::internal::GetCapturedStderr();
-    ASSERT_EQ(scene.materials.size(), 7u);
+    ASSERT_EQ(scene.materials.size(), 8u);
     auto values = [&](int texture) -> std::vector<float> {
         if (texture < 0) return {};
         std::vector<float> v;
