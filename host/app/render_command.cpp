@@ -139,6 +139,7 @@ int renderCommand(int argc, char** argv, int first, MpiJob* job) {
     PhaseProgress phases;  // loading and building a big model take seconds (issue 52)
     SceneLoadOptions loadOptions{texelLimit, phases.callback()};
     loadOptions.camera = command.camera;
+    loadOptions.variant = command.variant;
     loadOptions.instancing = command.instancing;
     if (device)
         loadOptions.checkTriangles = [&](std::size_t triangles) {

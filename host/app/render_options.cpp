@@ -60,6 +60,7 @@ docs/distributed.md).
   --fresnel MODEL          schlick (default) | exact | schlick-exp2, for glass
   --filter MODE            bilinear (default) | nearest: textures and environment maps
   --camera NAME            a glTF scene's camera (default: its first perspective camera)
+  --variant NAME           a glTF scene's material variant (KHR_materials_variants; default: none)
   --camera-from X,Y,Z      camera position
   --camera-at X,Y,Z        camera target
   --camera-up X,Y,Z        camera up vector
@@ -122,6 +123,8 @@ RenderCommand parseRenderCommand(int argc, char** argv, int first) {
             else if (v == "nearest") c.filter = TextureFilter::Nearest;
             else throw InputError("--filter must be bilinear or nearest, got \"" + v + "\"");
         } else if (flag == "--camera") c.camera = args.valueOf(flag);
+        else if (flag == "--variant")
+            c.variant = args.valueOf(flag);
         else if (flag == "--camera-from") c.from = Arguments::toVec3(flag, args.valueOf(flag));
         else if (flag == "--camera-at") c.at = Arguments::toVec3(flag, args.valueOf(flag));
         else if (flag == "--camera-up") c.up = Arguments::toVec3(flag, args.valueOf(flag));

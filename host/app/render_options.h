@@ -33,7 +33,8 @@ struct RenderCommand {
     std::optional<glm::vec3> from, at, up, background;
     std::string backgroundMap;  // --background FILE: an equirectangular map in place of the scene's background
     std::vector<glm::vec3> lights;
-    std::string camera;  // a glTF scene's camera by name
+    std::string camera;      // a glTF scene's camera by name
+    std::string variant;     // a glTF scene's material variant by name
     bool instancing = true;  // repeated meshes stored once (SceneLoadOptions::instancing)
 };
 

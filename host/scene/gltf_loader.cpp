@@ -144,6 +144,7 @@ public:
         if (options_.placements.empty() || (options_.takeCamera && options_.placements.size() != 1))
             throw std::invalid_argument("loadGltf: a camera is taken from a file placed once");
         parse();
+        chooseVariant();
         const std::vector<int> roots = rootNodes();
         // A mesh placed twice or more, by two nodes or by two placements of the file, is stored once
         // and placed by instances (docs/scene-format.md, "Instancing").
@@ -441,6 +442,55 @@ private:
         return triangles;
     }
 
+    // KHR_materials_variants: the variant --variant names (its index in the file's list), or -1
+    // for none; without one, a file that has variants says so, naming them.
+    void chooseVariant() {
+        std::vector<std::string> names;
+        if (const auto found = model_.extensions.find("KHR_materials_variants"); found != model_.extensions.end()) {
+            const tinygltf::Value& variants = found->second.Get("variants");
+            if (!variants.IsArray()) fail("KHR_materials_variants has no list of variants");
+            for (int i = 0; i < int(variants.ArrayLen()); ++i) {
+                const tinygltf::Value& name = variants.Get(i).Get("name");
+                if (!name.IsString()) fail("KHR_materials_variants's variants[" + std::to_string(i) + "] has no name");
+                names.push_back(name.Get<std::string>());
+            }
+        }
+        std::string list;
+        for (const std::string& name : names) list += (list.empty() ? "" : ", ") + quoteInput(name);
+        if (load_.variant.empty()) {
+            if (!names.empty())
+                warnAbout(
+                    "has material variants (" + list +
+                    "): each primitive is rendered with its default material; choose a variant with --variant NAME");
+            return;
+        }
+        const auto chosen = std::find(names.begin(), names.end(), load_.variant);
+        if (chosen == names.end())
+            fail("has no material variant named " + quoteInput(load_.variant) +
+                 (names.empty() ? std::string(" (it has none)") : "; its variants: " + list));
+        variant_ = int(chosen - names.begin());
+    }
+
+    // The glTF material a primitive is rendered with: the one its KHR_materials_variants mappings
+    // give the chosen variant, else its default (glTF's `material`).
+    int primitiveMaterial(const tinygltf::Primitive& primitive, const std::string& where) const {
+        const auto found = primitive.extensions.find("KHR_materials_variants");
+        if (variant_ < 0 || found == primitive.extensions.end()) return primitive.material;
+        const tinygltf::Value& mappings = found->second.Get("mappings");
+        if (!mappings.IsArray()) fail(where + ": KHR_materials_variants has no mappings");
+        for (int i = 0; i < int(mappings.ArrayLen()); ++i) {
+            const tinygltf::Value& material = mappings.Get(i).Get("material");
+            const tinygltf::Value& variants = mappings.Get(i).Get("variants");
+            if (!material.IsNumber() || !variants.IsArray())
+                fail(where + ": KHR_materials_variants's mappings[" + std::to_string(i) +
+                     "] is not a material and its variants");
+            for (int k = 0; k < int(variants.ArrayLen()); ++k)
+                if (variants.Get(k).IsNumber() && variants.Get(k).GetNumberAsInt() == variant_)
+                    return material.GetNumberAsInt();
+        }
+        return primitive.material;
+    }
+
     std::string nodeName(int nodeIndex, const tinygltf::Node& node) const {
         const tinygltf::Mesh& m = mesh(node.mesh);
         return !node.name.empty() ? node.name : !m.name.empty() ? m.name : "node" + std::to_string(nodeIndex);
@@ -484,8 +534,9 @@ private:
             if (corners.size() % 3 != 0)
                 warnAbout(where + " has " + std::to_string(corners.size()) + " corners, not a multiple of 3: the last " +
                           std::to_string(corners.size() % 3) + " ignored");
-            const std::uint32_t material = materials_.sceneMaterial(primitive.material);
-            const glm::dmat3* uvTransform = materials_.uvTransform(primitive.material);
+            const int gltfMaterial = primitiveMaterial(primitive, where);
+            const std::uint32_t material = materials_.sceneMaterial(gltfMaterial);
+            const glm::dmat3* uvTransform = materials_.uvTransform(gltfMaterial);
             scene_.triangles.reserve(scene_.triangles.size() + corners.size() / 3);
             for (std::size_t k = 0; k + 2 < corners.size(); k += 3) {
                 std::size_t c[3] = {corners[k], corners[k + 1], corners[k + 2]};
@@ -675,6 +726,7 @@ private:
     GltfMaterials materials_;
     std::size_t trianglesToMake_ = 0, trianglesMade_ = 0;
     bool warnedSkin_ = false, warnedMorph_ = false;
+    int variant_ = -1;        // the chosen KHR_materials_variants variant (chooseVariant)
     bool quantized_ = false;  // the file uses KHR_mesh_quantization
 };
 

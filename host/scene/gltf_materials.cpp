@@ -92,7 +92,8 @@ bool isReadGltfExtension(const std::string& name) {
                                                "KHR_materials_dispersion",   "KHR_lights_punctual",
                                                "KHR_texture_transform",      "KHR_materials_pbrSpecularGlossiness",
                                                "KHR_mesh_quantization",      "EXT_meshopt_compression",
-                                               "KHR_draco_mesh_compression", "EXT_texture_webp"};
+                                               "KHR_draco_mesh_compression", "EXT_texture_webp",
+                                               "KHR_materials_variants"};
     return read.count(name) != 0;
 }
 

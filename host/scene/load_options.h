@@ -22,6 +22,10 @@ struct SceneLoadOptions {
     // The glTF camera to look through, by name (`--camera NAME`); empty: the file's first
     // perspective camera in node order.
     std::string camera;
+    // The glTF material variant to render, by name (KHR_materials_variants, `--variant NAME`):
+    // each primitive takes the material its mappings give that variant; empty: their default
+    // materials.
+    std::string variant;
     // A mesh that two or more entries of a JSON scene or nodes of a glTF file place is stored once
     // and placed by instances (Scene::instances); false: every copy in the world (`--no-instancing`).
     bool instancing = true;

@@ -50,6 +50,9 @@ Scene loadScene(const std::filesystem::path& path, const SceneLoadOptions& optio
     std::string extension = lowerCaseExtension(path);
     if (!options.camera.empty() && extension != ".gltf" && extension != ".glb")
         throw inputError(path, 0, "--camera picks a camera of a glTF file (.gltf, .glb); this scene is none");
+    if (!options.variant.empty() && extension != ".gltf" && extension != ".glb")
+        throw inputError(path, 0,
+                         "--variant picks a material variant of a glTF file (.gltf, .glb); this scene is none");
     // Running out of memory is the input's size, not a bug: say which scene (it was "internal
     // error: std::bad_alloc", naming nothing).
     try {

@@ -69,7 +69,7 @@ TEST_F(GltfCli, AssimpExportedCourseMeshesLoadFrameAndRender) {
 
 // `--camera NAME` picks a glTF file's camera; a name the file lacks is refused with the names it
 // has, and the option is refused for scenes that are no glTF file.
-TEST_F(GltfCli, CameraOptionPicksTheNamedCamera) {
+TEST_F(GltfCli, CameraAndVariantOptionsPickWhatTheFileHas) {
     // One triangle (three glTF vertices: the origin, +x and +y) seen by two cameras.
     const std::string gltf = write("two_cameras.gltf", R"({
   "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],
@@ -99,6 +99,16 @@ TEST_F(GltfCli, CameraOptionPicksTheNamedCamera) {
     const CommandRun notGltf = vitrum("render " + obj + " --camera front -o " + path("obj.png"));
     EXPECT_EQ(notGltf.exitCode, 1);
     EXPECT_NE(notGltf.output.find("--camera picks a camera of a glTF file"), std::string::npos) << notGltf.output;
+    // --variant (KHR_materials_variants) likewise: a file without variants has none to pick.
+    const CommandRun objVariant = vitrum("render " + obj + " --variant off -o " + path("obj.png"));
+    EXPECT_EQ(objVariant.exitCode, 1);
+    EXPECT_NE(objVariant.output.find("--variant picks a material variant of a glTF file"), std::string::npos)
+        << objVariant.output;
+    const CommandRun noVariants = vitrum("render " + gltf + " --variant off -o " + path("off.png"));
+    EXPECT_EQ(noVariants.exitCode, 1);
+    EXPECT_NE(noVariants.output.find("has no material variant named \"off\" (it has none)"), std::string::npos)
+        << noVariants.output;
+    EXPECT_FALSE(fs::exists(path("off.png")));
 }
 
 // The project's glTF scene (scenes/meshes/glass_set.gltf, written by

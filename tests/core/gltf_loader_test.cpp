@@ -1204,6 +1204,63 @@ TEST_F(GltfLoader, MaterialExtensionValuesOfTheWrongTypeAreRefused) {
 
 // The first perspective camera in node order, or the one named; its node looks down its -z with
 // +y up (glTF 2.0, 3.10.1); yfov in radians; the aspect ratio gives the image's height.
+// KHR_materials_variants: with --variant NAME each primitive takes the material its mappings give
+// that variant, else its default; without it, the defaults, and a warning names the variants. A
+// name the file has not is refused, naming those it has.
+TEST_F(GltfLoader, AVariantPicksEachPrimitivesMaterialFromItsMappings) {
+    GltfBuilder b;
+    b.doc()["extensions"] = {
+        {"KHR_materials_variants", {{"variants", {{{"name", "Lamp on"}}, {{"name", "Lamp off"}}}}}}};
+    auto lambert = [](std::string name, double grey) {
+        return json{{"name", std::move(name)},
+                    {"pbrMetallicRoughness", {{"baseColorFactor", {grey, grey, grey, 1.0}}, {"metallicFactor", 0.0}}},
+                    {"extensions", {{"KHR_materials_specular", {{"specularFactor", 0.0}}}}}};
+    };
+    const int shade = b.material(lambert("shade", 0.1)), lit = b.material(lambert("lit", 0.9)),
+              unlit = b.material(lambert("unlit", 0.3));
+    const int positions = b.positions(kTriangle);
+    // The shade has a mapping for "Lamp off" only; the bulb one for each variant.
+    const json mappings = {
+        {"mappings", {{{"material", lit}, {"variants", {0}}}, {{"material", unlit}, {"variants", {1}}}}}};
+    b.node({{"mesh",
+             b.mesh({{"attributes", {{"POSITION", positions}}},
+                     {"material", shade},
+                     {"extensions",
+                      {{"KHR_materials_variants", {{"mappings", {{{"material", unlit}, {"variants", {1}}}}}}}}}})}});
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", positions}}},
+                             {"material", lit},
+                             {"extensions", {{"KHR_materials_variants", mappings}}}})}});
+    const fs::path file = b.write(dir_ / "variants.gltf");
+    auto shown = [](const Scene& scene) {
+        std::vector<std::string> names;
+        for (const Triangle& t : scene.triangles) names.push_back(scene.materials[t.material].name);
+        return names;
+    };
+    SceneLoadOptions options;
+    ::testing::internal::CaptureStderr();
+    EXPECT_EQ(shown(loadScene(file, options)), (std::vector<std::string>{"shade", "lit"}));
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(warnings.find("has material variants (\"Lamp on\", \"Lamp off\"): each primitive is rendered with its "
+                            "default material; choose a variant with --variant NAME"),
+              std::string::npos)
+        << warnings;
+    options.variant = "Lamp on";
+    EXPECT_EQ(shown(loadScene(file, options)), (std::vector<std::string>{"shade", "lit"}));
+    options.variant = "Lamp off";
+    EXPECT_EQ(shown(loadScene(file, options)), (std::vector<std::string>{"unlit", "unlit"}));
+    options.variant = "Lamp broken";
+    try {
+        loadScene(file, options);
+        ADD_FAILURE() << "loaded a variant the file has not";
+    } catch (const InputError& e) {
+        EXPECT_NE(
+            std::string(e.what()).find("has no material variant named \"Lamp broken\"; its variants: \"Lamp on\", "
+                                       "\"Lamp off\""),
+            std::string::npos)
+            << e.what();
+    }
+}
+
 TEST_F(GltfLoader, CamerasComeFromTheirNodes) {
     GltfBuilder b;
     b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", b.positions(kTriangle)}}}})}});

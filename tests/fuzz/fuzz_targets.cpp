@@ -88,6 +88,13 @@ int fuzzGltf(const std::uint8_t* data, std::size_t size) {
         buildSceneBvh(scene);
     } catch (const InputError&) {
     }
+    try {
+        // A material variant's mappings (KHR_materials_variants), by the name the seeds use.
+        SceneLoadOptions options;
+        options.variant = "off";
+        loadScene(file, options);
+    } catch (const InputError&) {
+    }
     return 0;
 }
 
