@@ -29,13 +29,24 @@ void expectSameImage(const Image& a, const Image& b, double maxShareOver005 = 0.
     EXPECT_LE(d.meanAbsError, maxMean);
 }
 
+struct InstancedAndFlat {
+    RenderPair instanced;
+    RenderPair flat;  // every copy in the world
+};
+
+// The scene rendered as placed and flattened, on both backends: the GPU's image within the
+// thresholds of the CPU's, and each backend's copies as its flattened ones.
+InstancedAndFlat renderInstancedAndFlat(const Scene& scene) {
+    InstancedAndFlat r{renderBoth(scene), renderBoth(flattened(scene))};
+    expectImagesMatch(r.instanced);
+    expectSameImage(r.instanced.gpu, r.flat.gpu);
+    expectSameImage(r.instanced.cpu, r.flat.cpu);
+    return r;
+}
+
 TEST(Instancing, PlacedCopiesRenderAsTheirFlattenedSceneOnBothBackends) {
     const Scene scene = instancedScene();
-    RenderPair instanced = renderBoth(scene);
-    RenderPair flat = renderBoth(flattened(scene));
-    expectImagesMatch(instanced);
-    expectSameImage(instanced.gpu, flat.gpu);
-    expectSameImage(instanced.cpu, flat.cpu);
+    const auto [instanced, flat] = renderInstancedAndFlat(scene);
     EXPECT_EQ(instanced.gpuStats.primaryRays, flat.gpuStats.primaryRays);
     // Refraction through the glass copies, the mirrored one included (a copy whose winding were
     // inward would make its rays leave a medium they never entered), as often as flattened.
@@ -53,11 +64,7 @@ TEST(Instancing, ThinGlassCopiesRenderAsTheirFlattenedScene) {
     Scene scene = instancedScene();
     scene.materials[1] = makeMaterial(MaterialModel::ThinGlass, glm::vec3(0.0f), glm::vec3(0.9f, 0.5f, 0.3f), {},
                                       1.0f, 1.7f);
-    RenderPair instanced = renderBoth(scene);
-    RenderPair flat = renderBoth(flattened(scene));
-    expectImagesMatch(instanced);
-    expectSameImage(instanced.gpu, flat.gpu);
-    expectSameImage(instanced.cpu, flat.cpu);
+    const auto [instanced, flat] = renderInstancedAndFlat(scene);
     EXPECT_GT(instanced.gpuStats.refractionRays, 0u);
     EXPECT_EQ(instanced.gpuStats.refractionRays, flat.gpuStats.refractionRays);
     EXPECT_EQ(instanced.gpuStats.maxMediumDepth, 0u);
@@ -72,11 +79,7 @@ TEST(Instancing, TintedGlassCopiesRenderAsTheirFlattenedScene) {
     ASSERT_EQ(scene.materials[1].model, MaterialModel::Glass);
     const RenderPair untinted = renderBoth(scene);
     scene.materials[1].tint = glm::vec3(0.6f, 0.9f, 0.4f);
-    const RenderPair instanced = renderBoth(scene);
-    const RenderPair flat = renderBoth(flattened(scene));
-    expectImagesMatch(instanced);
-    expectSameImage(instanced.gpu, flat.gpu);
-    expectSameImage(instanced.cpu, flat.cpu);
+    const auto [instanced, flat] = renderInstancedAndFlat(scene);
     EXPECT_TRUE(instanced.gpuStats.kernel && instanced.gpuStats.kernel->glassTints);
     EXPECT_GT(diffImages(instanced.gpu, untinted.gpu).shareOver005, 0.01);
 }
@@ -105,11 +108,7 @@ std::size_t texturedTetrahedra(Scene& scene, int Material::*texture, float even,
 TEST(Instancing, CutOutCopiesRenderAsTheirFlattenedScene) {
     Scene scene = instancedScene();
     const std::size_t plastic = texturedTetrahedra(scene, &Material::cutout, 0.2f, 1.5f);
-    const RenderPair instanced = renderBoth(scene);
-    const RenderPair flat = renderBoth(flattened(scene));
-    expectImagesMatch(instanced);
-    expectSameImage(instanced.gpu, flat.gpu);
-    expectSameImage(instanced.cpu, flat.cpu);
+    const auto [instanced, flat] = renderInstancedAndFlat(scene);
     EXPECT_TRUE(instanced.gpuStats.kernel && instanced.gpuStats.kernel->cutouts);
     scene.materials[plastic].cutout = -1;
     EXPECT_GT(diffImages(instanced.gpu, renderBoth(scene).gpu).shareOver005, 0.01) << "the holes show";
@@ -121,11 +120,7 @@ TEST(Instancing, CutOutCopiesRenderAsTheirFlattenedScene) {
 TEST(Instancing, PartlyCoveredCopiesRenderAsTheirFlattenedScene) {
     Scene scene = instancedScene();
     const std::size_t plastic = texturedTetrahedra(scene, &Material::coverage, 0.2f, 0.7f);
-    const RenderPair instanced = renderBoth(scene);
-    const RenderPair flat = renderBoth(flattened(scene));
-    expectImagesMatch(instanced);
-    expectSameImage(instanced.gpu, flat.gpu);
-    expectSameImage(instanced.cpu, flat.cpu);
+    const auto [instanced, flat] = renderInstancedAndFlat(scene);
     EXPECT_GT(instanced.gpuStats.passThroughRays, 0u);
     EXPECT_EQ(instanced.gpuStats.passThroughRays, flat.gpuStats.passThroughRays);
     scene.materials[plastic].coverage = -1;
@@ -142,11 +137,7 @@ TEST(Instancing, CopiesOfGlassInPartsRenderAsTheirFlattenedScene) {
     scene.materials[glass].model = MaterialModel::Glass;
     scene.materials[glass].opaquePart = int(scene.materials.size());
     scene.materials.push_back(opaque);
-    const RenderPair instanced = renderBoth(scene);
-    const RenderPair flat = renderBoth(flattened(scene));
-    expectImagesMatch(instanced);
-    expectSameImage(instanced.gpu, flat.gpu);
-    expectSameImage(instanced.cpu, flat.cpu);
+    const auto [instanced, flat] = renderInstancedAndFlat(scene);
     EXPECT_TRUE(instanced.gpuStats.kernel && instanced.gpuStats.kernel->transmissionTextures);
     scene.materials[glass].transmissionTexture = -1;
     EXPECT_GT(diffImages(instanced.gpu, renderBoth(scene).gpu).shareOver005, 0.01) << "the opaque parts show";
