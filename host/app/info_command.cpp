@@ -31,13 +31,25 @@ std::string modelName(MaterialModel model) {
 }  // namespace
 
 int infoCommand(int argc, char** argv, int first) {
-    if (wantsHelp(argc, argv, first) || argc - first != 1) {
-        std::cout << "usage: vitrum info SCENE\n\nPrints the triangles, objects, materials, lights, camera and BVH "
-                     "statistics of SCENE (.json, .obj, .gltf or .glb).\n";
-        return argc - first == 1 ? 0 : 1;
+    if (wantsHelp(argc, argv, first) || argc - first < 1) {
+        std::cout << "usage: vitrum info SCENE [--camera NAME] [--variant NAME]\n\nPrints the triangles, objects, "
+                     "materials, lights, camera and BVH statistics of SCENE (.json, .obj, .gltf or .glb); a glTF "
+                     "file's camera and material variant by name, as `vitrum render` takes them.\n";
+        return argc - first >= 1 ? 0 : 1;
     }
     PhaseProgress phases;
-    Scene scene = loadScene(argv[first], {.progress = phases.callback()});
+    SceneLoadOptions options{.progress = phases.callback()};
+    Arguments args(argc, argv, first + 1);
+    while (!args.empty()) {
+        const std::string flag = args.next();
+        if (flag == "--camera")
+            options.camera = args.valueOf(flag);
+        else if (flag == "--variant")
+            options.variant = args.valueOf(flag);
+        else
+            throw InputError("unknown option " + flag + " (see vitrum info --help)");
+    }
+    Scene scene = loadScene(argv[first], options);
     // The analysis beside the BVH build, as `vitrum render` runs them (both read only the triangles).
     std::future<SceneFeatures> analysis = std::async(std::launch::async, [&] { return analyseScene(scene); });
     Bvh bvh = buildSceneBvh(scene, [&](double fraction) { phases.update("building the BVH", fraction); });

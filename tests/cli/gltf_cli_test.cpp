@@ -109,6 +109,14 @@ TEST_F(GltfCli, CameraAndVariantOptionsPickWhatTheFileHas) {
     EXPECT_NE(noVariants.output.find("has no material variant named \"off\" (it has none)"), std::string::npos)
         << noVariants.output;
     EXPECT_FALSE(fs::exists(path("off.png")));
+    // `vitrum info` takes both as `vitrum render` does.
+    const CommandRun info = vitrum("info " + gltf + " --camera wide");
+    ASSERT_EQ(info.exitCode, 0) << info.output;
+    EXPECT_NE(info.output.find(", 640x320\n"), std::string::npos) << info.output;
+    const CommandRun infoVariant = vitrum("info " + gltf + " --variant off");
+    EXPECT_EQ(infoVariant.exitCode, 1);
+    EXPECT_NE(infoVariant.output.find("has no material variant named \"off\""), std::string::npos)
+        << infoVariant.output;
 }
 
 // The project's glTF scene (scenes/meshes/glass_set.gltf, written by
