@@ -324,21 +324,7 @@ void GltfMaterials::transmissionTexture(const tinygltf::Material& g, const tinyg
     if (!value.IsObject() || !value.Has("index") || !value.Get("index").IsInt() || value.Get("index").Get<int>() < 0)
         fail(quoted + ": KHR_materials_transmission's transmissionTexture has no texture index");
     const tinygltf::TextureInfo info = textureInfo(value);
-    glm::dmat3 transform(1.0);
-    bool transformed = false;
-    int texCoord = info.texCoord;
-    for (const auto& [key, extension] : info.extensions) {
-        if (key != "KHR_texture_transform") {
-            ignored.push_back("transmissionTexture's " + key);
-            continue;
-        }
-        transform = textureTransform(extension, quoted);
-        transformed = true;
-        if (extension.Has("texCoord") && extension.Get("texCoord").IsNumber())
-            texCoord = extension.Get("texCoord").GetNumberAsInt();
-    }
-    if (texCoord != 0)
-        ignored.push_back("transmissionTexture's TEXCOORD_" + std::to_string(texCoord) + " (TEXCOORD_0 used)");
+    const std::optional<glm::dmat3> transform = textureCoordinates(info, "transmissionTexture", quoted, ignored);
     const int source = imageSource(info, quoted, "transmissionTexture");
     if (source < 0) return;  // glass everywhere, as the factor says (warned)
     const auto key = std::make_pair(source, factor);
@@ -368,12 +354,12 @@ void GltfMaterials::transmissionTexture(const tinygltf::Material& g, const tinyg
     // that texture; else this texture's transform becomes theirs.
     if (auto base = sources_.find(index); base != sources_.end() && base->second >= 0) {
         const glm::dmat3* baseTransform = uvTransform(index);
-        if ((baseTransform ? *baseTransform : glm::dmat3(1.0)) != transform) {
+        if ((baseTransform ? *baseTransform : glm::dmat3(1.0)) != transform.value_or(glm::dmat3(1.0))) {
             ignored.push_back("transmissionTexture (its KHR_texture_transform is not the baseColorTexture's)");
             return;
         }
-    } else if (transformed) {
-        uvTransforms_[index] = transform;
+    } else if (transform) {
+        uvTransforms_[index] = *transform;
     }
     if (made) {
         // Its own texture on the device: it must fit what the opaque part's colour left.
@@ -447,19 +433,30 @@ int GltfMaterials::baseColorSource(const tinygltf::TextureInfo& info, int materi
                                    std::vector<std::string>& ignored) {
     if (info.index < 0) return -1;
     if (auto found = sources_.find(material); found != sources_.end()) return found->second;
+    if (const auto transform = textureCoordinates(info, "baseColorTexture", quoted, ignored))
+        uvTransforms_[material] = *transform;
+    return sources_[material] = imageSource(info, quoted, "baseColorTexture");
+}
+
+// How a texture (`role`) is read: its KHR_texture_transform, if it has one, at TEXCOORD_0 (another
+// set, and other extensions of the texture, go into `ignored`).
+std::optional<glm::dmat3> GltfMaterials::textureCoordinates(const tinygltf::TextureInfo& info, const char* role,
+                                                            const std::string& quoted,
+                                                            std::vector<std::string>& ignored) {
+    std::optional<glm::dmat3> transform;
     int texCoord = info.texCoord;
     for (const auto& [key, value] : info.extensions) {
         if (key != "KHR_texture_transform") {
-            ignored.push_back("baseColorTexture's " + key);
+            ignored.push_back(std::string(role) + "'s " + key);
             continue;
         }
-        uvTransforms_[material] = textureTransform(value, quoted);
+        transform = textureTransform(value, quoted);
         if (value.Has("texCoord") && value.Get("texCoord").IsNumber())
             texCoord = value.Get("texCoord").GetNumberAsInt();
     }
     if (texCoord != 0)
-        ignored.push_back("baseColorTexture's TEXCOORD_" + std::to_string(texCoord) + " (TEXCOORD_0 used)");
-    return sources_[material] = imageSource(info, quoted, "baseColorTexture");
+        ignored.push_back(std::string(role) + "'s TEXCOORD_" + std::to_string(texCoord) + " (TEXCOORD_0 used)");
+    return transform;
 }
 
 // The image texture info.index reads, or -1 where it has none that can be read (with a warning

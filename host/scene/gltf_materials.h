@@ -64,6 +64,8 @@ private:
                                                                         std::vector<std::string>& ignored);
     int baseColorSource(const tinygltf::TextureInfo& info, int material, const std::string& quoted,
                         std::vector<std::string>& ignored);
+    std::optional<glm::dmat3> textureCoordinates(const tinygltf::TextureInfo& info, const char* role,
+                                                 const std::string& quoted, std::vector<std::string>& ignored);
     int imageSource(const tinygltf::TextureInfo& info, const std::string& quoted, const char* role);
     std::filesystem::path imageName(int source) const;
     Image decodeSource(int source, const std::string& quoted, const char* role = "baseColorTexture");

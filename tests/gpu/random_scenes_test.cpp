@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <optional>
 #include <random>
 #include <string>
 #include <utility>
@@ -188,11 +189,16 @@ private:
         const MaterialModel model =
             pick({MaterialModel::Normal, MaterialModel::Lambert, MaterialModel::Lambert, MaterialModel::Phong,
                   MaterialModel::Glass, MaterialModel::Glass, MaterialModel::Mirror});
-        Material m = makeMaterial(model, vec3(uniform(0, 0.2f)), vec3(uniform(0, 1), uniform(0, 1), uniform(0, 1)),
-                                  vec3(uniform(0, 1)), pick({1.0f, 20.0f, 1000.0f}), uniform(1.0f, 2.5f));
+        Material m = materialOf(model);
         if (model == MaterialModel::Glass && chance(0.5))
             m.attenuation = vec3(uniform(0, 2), uniform(0, 2), uniform(0, 2));
         return m;
+    }
+
+    // A material of `model` with random colours, exponent and index.
+    Material materialOf(MaterialModel model) {
+        return makeMaterial(model, vec3(uniform(0, 0.2f)), vec3(uniform(0, 1), uniform(0, 1), uniform(0, 1)),
+                            vec3(uniform(0, 1)), pick({1.0f, 20.0f, 1000.0f}), uniform(1.0f, 2.5f));
     }
 
     void addThinGlass(Scene& scene) {
@@ -270,64 +276,57 @@ private:
     // A random grey texture of 2 to 5 texels a side, from 0 to 2, cutting one material that is
     // not a glass volume (if there is one); the triangles' texture coordinates as addTexture gives them.
     void addCutout(Scene& scene) {
+        const auto material =
+            randomMaterialWhere(scene, [](const Material& m) { return m.model != MaterialModel::Glass; });
+        if (!material) return;
+        scene.materials[*material].cutout = addGreyTexture(scene, "cutout", 0.0f, 2.0f);
+        drawn_ += ", material " + std::to_string(*material) + " cut out";
+    }
+
+    // One of the scene's materials that `accepts` takes, at random; none where it takes none.
+    template <class Accepts>
+    std::optional<std::size_t> randomMaterialWhere(const Scene& scene, Accepts accepts) {
         std::vector<std::size_t> candidates;
         for (std::size_t i = 0; i < scene.materials.size(); ++i)
-            if (scene.materials[i].model != MaterialModel::Glass) candidates.push_back(i);
-        if (candidates.empty()) return;
-        const std::size_t material =
-            candidates[std::uniform_int_distribution<std::size_t>(0, candidates.size() - 1)(rng_)];
+            if (accepts(scene.materials[i])) candidates.push_back(i);
+        if (candidates.empty()) return std::nullopt;
+        return candidates[std::uniform_int_distribution<std::size_t>(0, candidates.size() - 1)(rng_)];
+    }
+
+    // A random grey texture of 2 to 5 texels a side, its values in [low, high), added to the
+    // scene with the triangles' texture coordinates as addTexture gives them: its index.
+    int addGreyTexture(Scene& scene, const char* name, float low, float high) {
         const int side = int(uniform(2.0f, 5.99f));
-        Texture texture{"cutout", side, side, {}};
-        for (int i = 0; i < side * side; ++i) texture.texels.push_back(vec3(uniform(0, 2)));
-        scene.materials[material].cutout = int(scene.textures.size());
+        Texture texture{name, side, side, {}};
+        for (int i = 0; i < side * side; ++i) texture.texels.push_back(vec3(uniform(low, high)));
         scene.textures.push_back(std::move(texture));
         uvsFromPositions(scene);
-        drawn_ += ", material " + std::to_string(material) + " cut out";
+        return int(scene.textures.size()) - 1;
     }
 
     // A random grey texture of 2 to 5 texels a side, from -1/4 to 3/2 (taken within [0, 1]), the
     // share of one Lambert, Phong or mirror material that is there (if there is one).
     void addCoverage(Scene& scene) {
-        std::vector<std::size_t> candidates;
-        for (std::size_t i = 0; i < scene.materials.size(); ++i)
-            if (canBePartlyCovered(scene.materials[i].model)) candidates.push_back(i);
-        if (candidates.empty()) return;
-        const std::size_t material =
-            candidates[std::uniform_int_distribution<std::size_t>(0, candidates.size() - 1)(rng_)];
-        const int side = int(uniform(2.0f, 5.99f));
-        Texture texture{"coverage", side, side, {}};
-        for (int i = 0; i < side * side; ++i) texture.texels.push_back(vec3(uniform(-0.25f, 1.5f)));
-        scene.materials[material].coverage = int(scene.textures.size());
-        scene.textures.push_back(std::move(texture));
-        uvsFromPositions(scene);
-        drawn_ += ", material " + std::to_string(material) + " partly there";
+        const auto material = randomMaterialWhere(scene, [](const Material& m) { return canBePartlyCovered(m.model); });
+        if (!material) return;
+        scene.materials[*material].coverage = addGreyTexture(scene, "coverage", -0.25f, 1.5f);
+        drawn_ += ", material " + std::to_string(*material) + " partly there";
     }
 
     // A random grey texture of 2 to 5 texels a side, from 0 to 2, where one glass or thin glass
     // material (if there is one) is glass where it is 1 or more, and a new Lambert, Phong or
     // mirror material elsewhere.
     void addTransmissionTexture(Scene& scene) {
-        std::vector<std::size_t> candidates;
-        for (std::size_t i = 0; i < scene.materials.size(); ++i)
-            if (scene.materials[i].model == MaterialModel::Glass ||
-                scene.materials[i].model == MaterialModel::ThinGlass)
-                candidates.push_back(i);
-        if (candidates.empty()) return;
-        const std::size_t material =
-            candidates[std::uniform_int_distribution<std::size_t>(0, candidates.size() - 1)(rng_)];
+        const auto material = randomMaterialWhere(scene, [](const Material& m) {
+            return m.model == MaterialModel::Glass || m.model == MaterialModel::ThinGlass;
+        });
+        if (!material) return;
         const MaterialModel model = pick({MaterialModel::Lambert, MaterialModel::Phong, MaterialModel::Mirror});
-        const int side = int(uniform(2.0f, 5.99f));
-        Texture texture{"transmission", side, side, {}};
-        for (int i = 0; i < side * side; ++i) texture.texels.push_back(vec3(uniform(0.0f, 2.0f)));
-        scene.materials[material].transmissionTexture = int(scene.textures.size());
-        scene.materials[material].opaquePart = int(scene.materials.size());
-        scene.textures.push_back(std::move(texture));
-        scene.materials.push_back(makeMaterial(model, vec3(uniform(0, 0.2f)),
-                                               vec3(uniform(0, 1), uniform(0, 1), uniform(0, 1)), vec3(uniform(0, 1)),
-                                               pick({1.0f, 20.0f, 1000.0f}), uniform(1.0f, 2.5f)));
-        uvsFromPositions(scene);
+        scene.materials[*material].transmissionTexture = addGreyTexture(scene, "transmission", 0.0f, 2.0f);
+        scene.materials[*material].opaquePart = int(scene.materials.size());
+        scene.materials.push_back(materialOf(model));
         drawn_ +=
-            ", material " + std::to_string(material) + " glass only where a texture says, else " + modelName(model);
+            ", material " + std::to_string(*material) + " glass only where a texture says, else " + modelName(model);
     }
 
     // Every position, normal and direction of the scene turned by `angle` about `axis`.
